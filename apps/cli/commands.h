@@ -1,0 +1,18 @@
+#pragma once
+// Each `hylo` subcommand lives in its own cmd_<name>.cpp and registers itself on the root app
+// through one of these functions. A command reports failure by throwing std::exception with
+// a one-line reason; main() prints it and returns a non-zero exit code.
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "hylo/io/json.h"
+
+namespace hylo::cli {
+
+void AddInfoCommand(CLI::App& root);
+
+/// Writes `summary` to `path` when the user passed --json (path non-empty).
+void MaybeWriteJson(const std::string& path, const io::Json& summary);
+
+}  // namespace hylo::cli

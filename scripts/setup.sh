@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs every build and test dependency of hylo from Debian 12 packages.
+# Idempotent: apt skips what is already installed. Run as root (or with sudo available).
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libeigen3-dev libceres-dev libsuitesparse-dev libpcl-dev
+  libyaml-cpp-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libnanoflann-dev
+  librosbag-storage-dev libroscpp-dev libroscpp-core-dev
+  libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libstd-msgs-dev
+  gnuplot-nox
+)
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ "${#missing[@]}" -eq 0 ]; then
+  echo "[setup] all ${#packages[@]} Debian packages already installed"
+  exit 0
+fi
+echo "[setup] installing ${#missing[@]} Debian packages: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
