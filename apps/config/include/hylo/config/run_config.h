@@ -1,0 +1,76 @@
+#pragma once
+// One YAML file configures a run. This is the only place where YAML becomes the plain option
+// structs of the libraries: unknown keys are errors naming the key path, missing keys keep
+// the defaults, and the effective configuration can be written back next to a run's outputs.
+
+#include <Eigen/Geometry>
+#include <stdexcept>
+#include <string>
+
+#include "hylo/estimation/imu_noise.h"
+#include "hylo/io/log_reader.h"
+
+namespace hylo::config {
+
+/// A configuration that cannot be used: the message names the file, the key path and why.
+class ConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The lidar stream: where it is and how its driver stamps points.
+struct LidarConfig {
+  std::string topic = "/points";  ///< sensor_msgs/PointCloud2 topic in a bag
+  io::PointTimeConvention time_convention = io::PointTimeConvention::kAuto;  ///< per-point time
+  double min_range_m = 0.5;       ///< returns closer than this are dropped (vehicle body), m
+  double max_range_m = 100.0;     ///< returns farther than this are dropped, m
+  double scan_period_s = 0.1;     ///< nominal sweep duration, s (10 Hz spinning lidar: 0.1)
+
+  bool IsValid(std::string* why) const;
+};
+
+/// The inertial stream. `imu: none` in YAML disables it (no-IMU mode).
+struct ImuConfig {
+  bool enabled = true;            ///< false = no IMU: constant-velocity model, no deskewing
+  std::string topic = "/imu";     ///< sensor_msgs/Imu topic in a bag
+  double rate_hz = 200.0;         ///< nominal sample rate, Hz (used to detect gaps)
+  double gravity_mps2 = 9.81;     ///< local gravity magnitude, m/s^2
+  double accel_scale = 1.0;       ///< multiplies accelerations; 9.81 for drivers reporting g
+  estimation::ImuNoise noise;     ///< continuous-time noise densities
+
+  bool IsValid(std::string* why) const;
+};
+
+/// A rigid transform as written in YAML: translation and roll-pitch-yaw, R = Rz(y) Ry(p) Rx(r).
+struct TransformConfig {
+  Eigen::Vector3d translation_m = Eigen::Vector3d::Zero();     ///< m
+  Eigen::Vector3d rotation_rpy_deg = Eigen::Vector3d::Zero();  ///< roll, pitch, yaw in degrees
+
+  Eigen::Isometry3d ToIsometry() const;
+  bool IsValid(std::string* why) const;
+};
+
+/// Everything a run reads from its configuration file.
+struct RunConfig {
+  std::string backend = "ieskf";  ///< estimator back-end: ieskf | sliding_window
+  LidarConfig lidar;
+  ImuConfig imu;
+  TransformConfig T_imu_lidar;    ///< maps points from the lidar frame to the IMU frame
+
+  /// Checks every section; *why names the field (with its section), value and constraint.
+  bool IsValid(std::string* why) const;
+  /// The streams to read from a log, as io::OpenLog takes them.
+  io::LogReadOptions LogOptions() const;
+};
+
+/// Parses YAML text. Throws ConfigError naming `source_name`, the key path and the reason for
+/// malformed YAML, unknown keys, wrong types and invalid values (IsValid).
+RunConfig ParseRunConfig(const std::string& yaml_text, const std::string& source_name);
+/// Reads and parses a file (ConfigError also when the file cannot be read).
+RunConfig LoadRunConfig(const std::string& path);
+/// The effective configuration, every field written, loadable again by ParseRunConfig.
+std::string ToYaml(const RunConfig& config);
+/// Writes ToYaml(config) to `path` (ConfigError when it cannot be written).
+void SaveRunConfig(const std::string& path, const RunConfig& config);
+
+}  // namespace hylo::config
