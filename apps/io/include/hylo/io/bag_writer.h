@@ -1,0 +1,47 @@
+#pragma once
+// ROS1 bag writing (rosbag_storage): IMU samples and scans in a real driver's PointCloud2
+// layout, as the simulator and the tests produce them. ROS types stay out of this header.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "hylo/estimation/measurements.h"
+#include "hylo/io/log_reader.h"
+#include "hylo/io/pointcloud2.h"
+
+namespace hylo::io {
+
+/// Writes a bag as a driver recording would look: each message's receive time is its stamp
+/// (a scan's is its end time, when a driver publishes it), so readers get receive order.
+/// rosbag refuses a receive time of 0: a message stamped 0 is filed at 1 ns (its header
+/// keeps 0). Negative stamps throw std::invalid_argument. Not thread-safe.
+class BagWriter {
+ public:
+  /// Creates (overwrites) `path`; throws std::runtime_error naming it if it cannot.
+  explicit BagWriter(const std::string& path);
+  ~BagWriter();  ///< closes the bag if Close() was not called (errors then swallowed)
+  BagWriter(const BagWriter&) = delete;
+  BagWriter& operator=(const BagWriter&) = delete;
+
+  /// sensor_msgs/Imu: header.stamp = t_ns, linear_acceleration = accel_imu (m/s^2),
+  /// angular_velocity = gyro_imu (rad/s), orientation unknown (orientation_covariance[0] = -1).
+  void WriteImu(const std::string& topic, const estimation::ImuSample& imu,
+                const std::string& frame_id);
+  /// sensor_msgs/PointCloud2 in the field layout of `layout`'s driver (EncodePointCloud2);
+  /// `frame_id` replaces scan.frame_id. Receive time = scan.end_t_ns.
+  void WriteScan(const std::string& topic, const estimation::LidarScan& scan,
+                 PointTimeConvention layout, const std::string& frame_id);
+  /// Any cloud, as given (tests of odd layouts; converters). Receive time `receive_t_ns`.
+  void WriteCloud(const std::string& topic, const PointCloud2Message& cloud,
+                  int64_t receive_t_ns);
+  /// Writes the index and closes the file; further writes throw std::logic_error.
+  /// Throws std::runtime_error naming the file on an I/O error.
+  void Close();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace hylo::io

@@ -1,0 +1,86 @@
+#include "hylo/io/bag_writer.h"
+
+#include <rosbag/bag.h>
+#include <sensor_msgs/Imu.h>
+#include <sensor_msgs/PointCloud2.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "ros_bridge.h"
+
+namespace hylo::io {
+
+struct BagWriter::Impl {
+  std::string path;
+  rosbag::Bag bag;
+  bool open = false;
+
+  /// rosbag rejects receive times below ros::TIME_MIN (1 ns).
+  template <typename Msg>
+  void Write(const std::string& topic, int64_t receive_t_ns, const Msg& msg) {
+    if (!open) throw std::logic_error("bag '" + path + "': write after Close()");
+    try {
+      bag.write(topic, detail::ToRosTime(std::max<int64_t>(receive_t_ns, 1)), msg);
+    } catch (const rosbag::BagException& e) {
+      throw std::runtime_error("bag '" + path + "': cannot write to " + topic + " (" +
+                               e.what() + ")");
+    }
+  }
+};
+
+BagWriter::BagWriter(const std::string& path) : impl_(std::make_unique<Impl>()) {
+  impl_->path = path;
+  try {
+    impl_->bag.open(path, rosbag::bagmode::Write);
+  } catch (const rosbag::BagException& e) {
+    throw std::runtime_error("bag '" + path + "': cannot be created (" + e.what() + ")");
+  }
+  impl_->open = true;
+}
+
+BagWriter::~BagWriter() {
+  try {
+    Close();
+  } catch (...) {  // a destructor must not throw; call Close() to see the error
+  }
+}
+
+void BagWriter::WriteImu(const std::string& topic, const estimation::ImuSample& imu,
+                         const std::string& frame_id) {
+  sensor_msgs::Imu msg;
+  msg.header.stamp = detail::ToRosTime(imu.t_ns);
+  msg.header.frame_id = frame_id;
+  msg.orientation_covariance[0] = -1.0;  // sensor_msgs/Imu: "no orientation estimate"
+  msg.linear_acceleration.x = imu.accel_imu.x();
+  msg.linear_acceleration.y = imu.accel_imu.y();
+  msg.linear_acceleration.z = imu.accel_imu.z();
+  msg.angular_velocity.x = imu.gyro_imu.x();
+  msg.angular_velocity.y = imu.gyro_imu.y();
+  msg.angular_velocity.z = imu.gyro_imu.z();
+  impl_->Write(topic, imu.t_ns, msg);
+}
+
+void BagWriter::WriteScan(const std::string& topic, const estimation::LidarScan& scan,
+                          PointTimeConvention layout, const std::string& frame_id) {
+  PointCloud2Message cloud = EncodePointCloud2(scan, layout);
+  cloud.frame_id = frame_id;
+  impl_->Write(topic, scan.end_t_ns, detail::ToRos(std::move(cloud)));
+}
+
+void BagWriter::WriteCloud(const std::string& topic, const PointCloud2Message& cloud,
+                           int64_t receive_t_ns) {
+  impl_->Write(topic, receive_t_ns, detail::ToRos(PointCloud2Message(cloud)));
+}
+
+void BagWriter::Close() {
+  if (!impl_->open) return;
+  impl_->open = false;
+  try {
+    impl_->bag.close();
+  } catch (const rosbag::BagException& e) {
+    throw std::runtime_error("bag '" + impl_->path + "': cannot be closed (" + e.what() + ")");
+  }
+}
+
+}  // namespace hylo::io

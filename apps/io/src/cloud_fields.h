@@ -1,0 +1,87 @@
+#pragma once
+// Internal to hylo::io: pieces shared by the PCD, PLY and KITTI readers and writers.
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "hylo/io/cloud_io.h"
+
+namespace hylo::io::internal {
+
+/// Throws std::runtime_error "<path>: <reason>".
+[[noreturn]] void ThrowFileError(const std::string& path, const std::string& reason);
+
+/// Opens for binary reading; throws naming the file when it is missing or unreadable.
+std::ifstream OpenForReading(const std::string& path);
+/// Everything from the current position to the end of the stream.
+std::vector<uint8_t> ReadRest(std::ifstream* in);
+
+enum class ScalarKind { kFloat, kSigned, kUnsigned };
+struct ScalarType {
+  ScalarKind kind = ScalarKind::kFloat;
+  int size = 4;  ///< bytes: 1, 2, 4 or 8 (floats: 4 or 8)
+};
+/// Decodes one little-endian scalar (or big-endian when `swap` is true) as double.
+double DecodeScalar(const uint8_t* bytes, ScalarType type, bool swap);
+
+/// A number parsed from text, rounded to what a binary field of `type` would hold (text
+/// "0.1" in a float32 field is the float nearest 0.1, as the writer meant).
+inline double AsDeclared(double value, ScalarType type) {
+  const bool is_float32 = type.kind == ScalarKind::kFloat && type.size == 4;
+  return is_float32 ? static_cast<double>(static_cast<float>(value)) : value;
+}
+
+/// Label from a decoded number (uint32 values wrap to int32; non-finite -> -1).
+int32_t ToLabel(double value);
+
+/// What a named field means to CloudFile; kNone fields are read past and ignored.
+enum Slot { kX, kY, kZ, kIntensity, kNx, kNy, kNz, kLabel, kNumSlots, kNone = -1 };
+/// x y z; intensity or scalar_intensity; normal_x or nx (y, z alike); label or scalar_label.
+/// Case-insensitive.
+int SlotForName(const std::string& name);
+
+/// Collects decoded points: drops those with a non-finite coordinate (counted) and keeps
+/// the attribute vectors that the file has in step with the positions.
+class CloudBuilder {
+ public:
+  /// `present[s]` tells whether slot s exists in the file; throws if x, y or z is missing.
+  CloudBuilder(const std::string& path, const bool present[kNumSlots], std::size_t reserve);
+  void Add(const double record[kNumSlots]);
+  CloudFile Finish() { return std::move(cloud_); }
+
+ private:
+  bool intensity_, normals_, labels_;
+  CloudFile cloud_;
+};
+
+/// Throws naming the file when an attribute vector is neither empty nor positions-sized.
+void CheckAttributeSizes(const std::string& path, const CloudFile& cloud);
+/// True when some coordinate is beyond +-1e4 m and not exactly a float (see WriteCloud).
+bool NeedsDoublePositions(const CloudFile& cloud);
+
+/// Shortest text that reads back to the same value.
+std::string FormatShortest(double value);
+std::string FormatShortest(float value);
+
+/// Lower-cased copy.
+std::string ToLower(std::string text);
+/// Splits on blanks (spaces, tabs, \r).
+std::vector<std::string> SplitWords(const std::string& line);
+
+/// Writes the bytes of `value` (host order: little-endian on every supported platform).
+template <typename T>
+void AppendBytes(std::vector<uint8_t>* out, T value) {
+  const std::size_t at = out->size();
+  out->resize(at + sizeof(T));
+  std::memcpy(out->data() + at, &value, sizeof(T));
+}
+
+/// Writes `text` then `body` to `path`, throwing naming the file on failure.
+void WriteFileOrThrow(const std::string& path, const std::string& text,
+                      const std::vector<uint8_t>& body);
+
+}  // namespace hylo::io::internal
