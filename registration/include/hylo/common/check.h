@@ -27,7 +27,12 @@ namespace detail {
 }  // namespace hylo
 
 /// HYLO_CHECK(cond) or HYLO_CHECK(cond, "message"): throws hylo::InternalError if cond is false.
-#define HYLO_CHECK(cond, ...)                                                       \
+/// (The selector keeps the variadic part non-empty, which ISO C++17 requires under -Wpedantic.)
+#define HYLO_CHECK(...) \
+  HYLO_CHECK_SELECT_(__VA_ARGS__, HYLO_CHECK_MESSAGE_, HYLO_CHECK_PLAIN_, unused)(__VA_ARGS__)
+#define HYLO_CHECK_SELECT_(a1, a2, name, ...) name
+#define HYLO_CHECK_PLAIN_(cond) HYLO_CHECK_MESSAGE_(cond, "")
+#define HYLO_CHECK_MESSAGE_(cond, message)                                          \
   do {                                                                              \
-    if (!(cond)) ::hylo::detail::FailCheck(#cond, __FILE__, __LINE__, "" __VA_ARGS__); \
+    if (!(cond)) ::hylo::detail::FailCheck(#cond, __FILE__, __LINE__, message);     \
   } while (0)
