@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -18,9 +20,11 @@ inline std::string DataDir() {
 /// Full path of `relative` inside the data directory.
 inline std::string DataPath(const std::string& relative) { return DataDir() + "/" + relative; }
 
-/// A scratch directory for one test, emptied on creation.
+/// A scratch directory for one test, emptied on creation. The process id keeps parallel
+/// ctest runs (each test is its own process) and concurrent checkouts apart.
 inline std::string ScratchDir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("hylo_test_" + name);
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("hylo_test_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();

@@ -116,7 +116,8 @@ TEST_P(PclReadsHylo, EveryEncoding) {
 
 INSTANTIATE_TEST_SUITE_P(Encodings, PclReadsHylo,
                          ::testing::Values(CloudEncoding::kAscii, CloudEncoding::kBinary,
-                                           CloudEncoding::kBinaryCompressed));
+                                           CloudEncoding::kBinaryCompressed),
+                         [](const auto& info) { return testing::EncodingName(info.param); });
 
 TEST(HyloReadsPcl, BinaryCompressedAndAscii) {
   const std::string dir = hylo::testing::ScratchDir("hylo_reads_pcl");

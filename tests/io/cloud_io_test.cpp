@@ -82,7 +82,8 @@ TEST_P(PcdRoundTrip, PositionsOnlyAndEmptyCloud) {
 
 INSTANTIATE_TEST_SUITE_P(Encodings, PcdRoundTrip,
                          ::testing::Values(CloudEncoding::kAscii, CloudEncoding::kBinary,
-                                           CloudEncoding::kBinaryCompressed));
+                                           CloudEncoding::kBinaryCompressed),
+                         [](const auto& info) { return testing::EncodingName(info.param); });
 
 TEST(Pcd, CompressedFileIsSmallerOnStructuredData) {
   const std::string dir = hylo::testing::ScratchDir("pcd_compress_size");

@@ -29,6 +29,16 @@ inline CloudFile RandomCloud(std::size_t n, const Eigen::Vector3d& center, unsig
 }
 
 /// Each coordinate rounded to float and back (what a float32 file field stores).
+/// Test-name suffix for an encoding-parameterised suite.
+inline std::string EncodingName(CloudEncoding encoding) {
+  switch (encoding) {
+    case CloudEncoding::kAscii: return "ascii";
+    case CloudEncoding::kBinary: return "binary";
+    case CloudEncoding::kBinaryCompressed: return "binary_compressed";
+  }
+  return "unknown";
+}
+
 inline Eigen::Vector3d RoundToFloat(const Eigen::Vector3d& p) {
   return Eigen::Vector3d(static_cast<float>(p.x()), static_cast<float>(p.y()),
                          static_cast<float>(p.z()));

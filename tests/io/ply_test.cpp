@@ -56,7 +56,8 @@ TEST_P(PlyRoundTrip, KeepsValuesAndAttributes) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Encodings, PlyRoundTrip,
-                         ::testing::Values(CloudEncoding::kAscii, CloudEncoding::kBinary));
+                         ::testing::Values(CloudEncoding::kAscii, CloudEncoding::kBinary),
+                         [](const auto& info) { return testing::EncodingName(info.param); });
 
 TEST(Ply, CompressedEncodingIsRefused) {
   const std::string dir = hylo::testing::ScratchDir("ply_refuse");

@@ -44,6 +44,8 @@ void Progress::Update(std::size_t done) {
 void Progress::Finish() {
   if (finished_) return;
   finished_ = true;
+  // Without a terminal the 100 % line may already be printed; do not repeat it.
+  if (!tty_ && total_ > 0 && last_decile_ == 10 && done_ == total_) return;
   Print(done_, true);
 }
 
