@@ -11,6 +11,7 @@
 namespace hylo::cli {
 
 void AddInfoCommand(CLI::App& root);
+void AddSimulateCommand(CLI::App& root);
 
 /// Writes `summary` to `path` when the user passed --json (path non-empty).
 void MaybeWriteJson(const std::string& path, const io::Json& summary);
