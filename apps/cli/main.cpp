@@ -17,7 +17,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "hylo 0.1.0");
   hylo::cli::AddInfoCommand(app);
+  hylo::cli::AddCraftCommand(app);
+  hylo::cli::AddGroundCommand(app);
   hylo::cli::AddSimulateCommand(app);
+  hylo::cli::AddTraversabilityCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

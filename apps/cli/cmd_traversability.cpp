@@ -1,0 +1,137 @@
+// `hylo traversability --ground G [--objects O] --out DIR`: ground (+ object) clouds -> grid
+// map layers -> traversability costmap (map_server PGM + YAML, coloured PNG, ASCII grids) and
+// a JSON summary.
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+#include "commands.h"
+#include "hylo/io/cloud_io.h"
+#include "hylo/io/costmap_io.h"
+#include "hylo/io/progress.h"
+#include "hylo/mapping/traversability.h"
+
+namespace hylo::cli {
+namespace {
+
+struct TraversabilityArgs {
+  std::string ground_path, objects_path, out_dir, json_path;
+  mapping::TraversabilityOptions options;
+};
+
+io::Json OptionsJson(const mapping::TraversabilityOptions& o) {
+  io::Json j = io::Json::MakeObject();
+  j["resolution_m"] = o.resolution_m;
+  j["max_hole_size_m"] = o.elevation.max_hole_size_m;
+  j["normal_radius_m"] = o.surface.normal_radius_m;
+  j["step_radius_m"] = o.surface.step_radius_m;
+  j["max_slope_deg"] = o.cost.max_slope_deg;
+  j["max_step_m"] = o.cost.max_step_m;
+  j["max_roughness_m"] = o.cost.max_roughness_m;
+  j["free_cost_max"] = o.cost.free_cost_max;
+  j["obstacle_min_height_m"] = o.cost.obstacle_min_height_m;
+  j["obstacle_max_height_m"] = o.cost.obstacle_max_height_m;
+  return j;
+}
+
+io::Json SummaryJson(const TraversabilityArgs& args, const mapping::TraversabilityMap& map) {
+  const mapping::GridGeometry& g = map.grid.geometry();
+  const mapping::TraversabilitySummary& s = map.summary;
+  io::Json j = io::Json::MakeObject();
+  j["ground"] = args.ground_path;
+  j["objects"] = args.objects_path;
+  j["options"] = OptionsJson(args.options);
+  j["origin_world"] =
+      io::Json::FromNumbers({g.origin_world.x(), g.origin_world.y(), g.origin_world.z()});
+  j["corner_world"] = io::Json::FromNumbers({g.CornerWorld().x(), g.CornerWorld().y()});
+  j["resolution_m"] = g.resolution_m;
+  j["width"] = g.width;
+  j["height"] = g.height;
+  io::Json& cells = j["cells"];
+  for (int c = 0; c < mapping::kNumCellClasses; ++c) {
+    cells[mapping::CellClassName(static_cast<mapping::CellClass>(c))] = s.cells_per_class[c];
+  }
+  cells["measured"] = s.elevation.measured_cells;
+  cells["hole_filled"] = s.elevation.filled_cells;
+  cells["holes_too_large"] = s.elevation.holes_too_large;
+  cells["without_plane"] = s.surface.cells_too_few_points + s.surface.cells_degenerate;
+  cells["lethal_from_obstacles"] = s.obstacles.lethal_cells;
+  io::Json& slope = j["slope_deg"];
+  slope["cells"] = s.slope.cells;
+  slope["mean"] = s.slope.mean_deg;
+  slope["median"] = s.slope.median_deg;
+  slope["p95"] = s.slope.p95_deg;
+  slope["max"] = s.slope.max_deg;
+  io::Json& points = j["points"];
+  points["ground"] = s.ground_points;
+  points["ground_non_finite"] = s.ground_points_skipped;
+  points["objects"] = s.object_points;
+  points["objects_in_obstacle_band"] = s.obstacles.points_in_band;
+  points["objects_below_band"] = s.obstacles.points_below_band;
+  points["objects_above_band"] = s.obstacles.points_above_band;
+  points["objects_without_ground"] = s.obstacles.points_without_ground;
+  return j;
+}
+
+std::vector<Eigen::Vector3d> ReadPositions(const std::string& path, const char* what) {
+  std::fprintf(stderr, "reading %s cloud %s\n", what, path.c_str());
+  io::CloudFile cloud = io::ReadCloud(path);
+  if (cloud.dropped_non_finite > 0) {
+    std::fprintf(stderr, "  %zu non-finite points dropped\n", cloud.dropped_non_finite);
+  }
+  return std::move(cloud.positions);
+}
+
+void Run(const TraversabilityArgs& args) {
+  std::string why;
+  if (!args.options.IsValid(&why)) throw std::invalid_argument("options: " + why);
+  const auto ground = ReadPositions(args.ground_path, "ground");
+  if (ground.empty()) throw std::runtime_error(args.ground_path + ": the ground cloud is empty");
+  const auto objects = args.objects_path.empty() ? std::vector<Eigen::Vector3d>{}
+                                                 : ReadPositions(args.objects_path, "object");
+  io::Progress progress("traversability", 5);
+  const mapping::TraversabilityMap map = mapping::ComputeTraversability(
+      ground, objects, args.options,
+      [&](const std::string&, int index, int) { progress.Update(index); });
+  progress.Update(5);
+  progress.Finish();
+  const std::vector<std::string> files = io::WriteTraversabilityFiles(args.out_dir, map);
+  io::Json summary = SummaryJson(args, map);
+  for (const std::string& f : files) summary["outputs"].PushBack(f);
+  const auto& n = map.summary.cells_per_class;
+  std::printf("grid %d x %d at %.3f m, corner (%.3f, %.3f)\n", map.grid.geometry().width,
+              map.grid.geometry().height, map.grid.geometry().resolution_m,
+              map.grid.geometry().CornerWorld().x(), map.grid.geometry().CornerWorld().y());
+  std::printf("cells: free %zu, cost %zu, lethal %zu (obstacles %zu), unknown %zu\n", n[1], n[2],
+              n[3], map.summary.obstacles.lethal_cells, n[0]);
+  std::printf("slope: mean %.2f, median %.2f, p95 %.2f, max %.2f deg over %zu cells\n",
+              map.summary.slope.mean_deg, map.summary.slope.median_deg, map.summary.slope.p95_deg,
+              map.summary.slope.max_deg, map.summary.slope.cells);
+  std::printf("wrote %zu files to %s\n", files.size(), args.out_dir.c_str());
+  MaybeWriteJson(args.json_path, summary);
+}
+
+}  // namespace
+
+void AddTraversabilityCommand(CLI::App& root) {
+  auto* cmd = root.add_subcommand(
+      "traversability", "Ground (+ object) cloud -> grid map layers -> traversability costmap");
+  static TraversabilityArgs args;
+  mapping::CostOptions& cost = args.options.cost;
+  cmd->add_option("--ground", args.ground_path, "ground cloud (PCD/PLY)")->required();
+  cmd->add_option("--objects", args.objects_path, "object (non-ground) cloud: obstacles");
+  cmd->add_option("--out", args.out_dir, "output folder")->required();
+  cmd->add_option("--resolution", args.options.resolution_m, "grid cell edge, m")
+      ->capture_default_str();
+  cmd->add_option("--max-slope", cost.max_slope_deg, "vehicle limit, deg")->capture_default_str();
+  cmd->add_option("--max-step", cost.max_step_m, "vehicle limit, m")->capture_default_str();
+  cmd->add_option("--max-roughness", cost.max_roughness_m, "vehicle limit, m")
+      ->capture_default_str();
+  cmd->add_option("--max-hole", args.options.elevation.max_hole_size_m,
+                  "fill enclosed holes up to this width, m (0: none)")
+      ->capture_default_str();
+  cmd->add_option("--json", args.json_path, "write a JSON summary here");
+  cmd->callback([] { Run(args); });
+}
+
+}  // namespace hylo::cli

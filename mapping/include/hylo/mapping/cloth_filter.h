@@ -1,0 +1,87 @@
+#pragma once
+// Ground / object split by cloth simulation (CSF: Zhang et al., "An Easy-to-Use Airborne LiDAR
+// Data Filtering Method Based on Cloth Simulation", Remote Sensing 2016, 8(6):501). The cloud
+// is turned upside down, a cloth of particles falls onto it under gravity, held together by
+// internal constraints; points close to the settled cloth are ground.
+//
+// The pieces live in separate headers, one idea each: cloth_filter_cloth.h (particle grid and
+// its dynamics), cloth_filter_surface.h (the rasterised inverted surface the particles land
+// on), cloth_filter_slope.h (slope post-processing). This header is the entry point.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "hylo/registration/point_types.h"
+
+namespace hylo::mapping {
+
+/// Defaults are the paper's / reference implementation's (GR 1, RI 3, dT 0.65, 500 iterations,
+/// hcc 0.5, slope smoothing on).
+struct ClothFilterOptions {
+  double cloth_resolution_m = 1.0;  ///< paper GR: horizontal spacing of cloth particles, m (> 0)
+  int rigidness = 3;         ///< paper RI: constraint passes per step, 1 soft .. 3 hard (1..10)
+  double time_step = 0.65;   ///< paper dT: simulation time step, simulation units (> 0)
+  int max_iterations = 500;  ///< simulation steps at most (>= 1)
+  double class_threshold_m = 0.5;  ///< paper hcc: |point - cloth| below this is ground, m (> 0)
+  bool slope_smoothing = true;     ///< paper ST: post-process movable particles on steep slopes
+  double slope_height_threshold_m = 0.3;   ///< post-processing: a movable particle is pinned to
+                                           ///< the surface when it continues a pinned neighbour
+                                           ///< within this height, m (> 0)
+  int slope_min_region_particles = 50;     ///< post-processing only touches movable regions of
+                                           ///< more than this many particles (>= 0)
+  double convergence_threshold_m = 0.005;  ///< stop when no particle moved more than this in one
+                                           ///< step, m (>= 0; 0 = run all iterations)
+  double gravity = 0.2;   ///< downward acceleration in cloth units per step^2 (> 0); with dT 0.65
+                          ///< a free particle falls 0.085 m in its first step
+  double damping = 0.01;  ///< fraction of the previous step's velocity lost per step, [0, 1)
+
+  /// False (with the field, its value and the constraint in *why) when a field is out of range.
+  bool IsValid(std::string* why) const;
+};
+
+enum class GroundLabel : uint8_t {
+  kGround = 0,   ///< within class_threshold_m of the cloth
+  kObject = 1,   ///< farther from the cloth (buildings, vegetation, noise above ground)
+  kInvalid = 2,  ///< non-finite input point, not classified
+};
+
+/// What the filter did. `labels` has one entry per input point, in input order.
+struct ClothFilterResult {
+  bool ok = false;                          ///< false: nothing classified, see message
+  std::string message;                      ///< why not ok, or a one-line description
+  std::vector<GroundLabel> labels;          ///< per input point
+  std::vector<float> height_above_cloth_m;  ///< per input point: z - cloth height under it, m
+                                            ///< (NaN for invalid points); ground is |.| < hcc
+  std::size_t num_ground = 0;
+  std::size_t num_objects = 0;
+  std::size_t num_invalid = 0;           ///< non-finite points (labelled kInvalid)
+  int iterations = 0;                    ///< simulation steps run
+  bool converged = false;                ///< stopped by convergence_threshold_m
+  double last_max_displacement_m = 0.0;  ///< largest particle move in the last step, m
+  int cloth_cols = 0;                    ///< particles along x
+  int cloth_rows = 0;                    ///< particles along y
+  std::size_t num_hole_particles = 0;    ///< particles with no point under them (filled)
+  std::size_t num_pinned_by_slope = 0;   ///< particles pinned by slope post-processing
+  Eigen::Vector3d origin_world = Eigen::Vector3d::Zero();  ///< shift used to compute near zero
+};
+
+/// Called once per simulation step (iteration starts at 1).
+using ClothProgress = std::function<void(int iteration, int max_iterations)>;
+
+/// Classifies points given in world (possibly UTM) coordinates: an origin is chosen and kept
+/// in the result, the work is done on coordinates near zero. Empty or all-NaN input gives
+/// ok = false. Throws std::invalid_argument when options are invalid.
+ClothFilterResult FilterGround(const std::vector<Eigen::Vector3d>& points_world,
+                               const ClothFilterOptions& options,
+                               const ClothProgress& progress = {});
+
+/// The same on a cloud already near zero (origin_world stays zero).
+ClothFilterResult FilterGroundLocal(const registration::PointCloud& points_local,
+                                    const ClothFilterOptions& options,
+                                    const ClothProgress& progress = {});
+
+}  // namespace hylo::mapping
