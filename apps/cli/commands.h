@@ -15,6 +15,7 @@ void AddCraftCommand(CLI::App& root);
 void AddGroundCommand(CLI::App& root);
 void AddSimulateCommand(CLI::App& root);
 void AddTraversabilityCommand(CLI::App& root);
+void AddEvalCommand(CLI::App& root);
 
 /// Writes `summary` to `path` when the user passed --json (path non-empty).
 void MaybeWriteJson(const std::string& path, const io::Json& summary);

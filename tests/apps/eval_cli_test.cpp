@@ -1,0 +1,139 @@
+// `hylo eval c2c|ate|rpe` end to end: the built executable on small files written here, with
+// figures computed by hand, read back from the JSON summary.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "hylo/io/cloud_io.h"
+#include "hylo/io/trajectory_io.h"
+#include "test_data.h"
+
+namespace hylo {
+namespace {
+
+const std::string kHylo = std::string(HYLO_BINARY_DIR) + "/apps/hylo";
+
+int RunHylo(const std::string& args, const std::string& stderr_path) {
+  return std::system((kHylo + " " + args + " > /dev/null 2> " + stderr_path).c_str());
+}
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// A number member of a flat JSON summary (NaN when absent).
+double JsonNumber(const std::string& json, const std::string& key) {
+  std::smatch m;
+  const std::regex re("\"" + key + "\": *([-+0-9.eE]+)");
+  return std::regex_search(json, m, re) ? std::stod(m[1]) : std::nan("");
+}
+
+// A helix at 10 Hz, orientation following the heading; `transform` edits each position.
+template <typename F>
+std::vector<io::StampedPose> Helix(F transform) {
+  std::vector<io::StampedPose> poses;
+  for (int i = 0; i < 100; ++i) {
+    const double a = 0.05 * i;
+    io::StampedPose p;
+    p.t_ns = i * 100'000'000LL;
+    p.position = transform(Eigen::Vector3d(10 * std::cos(a), 10 * std::sin(a), 0.1 * a));
+    p.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()));
+    poses.push_back(p);
+  }
+  return poses;
+}
+
+class EvalCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = testing::ScratchDir("eval_cli");
+    io::WriteTum(Path("gt.txt"), Helix([](const Eigen::Vector3d& p) { return p; }));
+  }
+  std::string Path(const std::string& name) const { return dir_ + "/" + name; }
+  std::string dir_;
+};
+
+TEST_F(EvalCliTest, C2cMatchesTheHandComputedCase) {
+  io::CloudFile a, b;
+  a.positions = {{0.1, 0, 0}, {0, 0.2, 0}, {10, 0, 0.3}, {9.6, 0, 0}, {5, 2, 0}};
+  b.positions = {{0, 0, 0}, {10, 0, 0}};
+  io::WriteCloud(Path("a.pcd"), a);
+  io::WriteCloud(Path("b.pcd"), b);
+  ASSERT_EQ(RunHylo("eval c2c --cloud " + Path("a.pcd") + " --ref " + Path("b.pcd") +
+                        " --max-dist 1 --json " + Path("c2c.json"),
+                    Path("err.txt")),
+            0)
+      << ReadText(Path("err.txt"));
+  const std::string json = ReadText(Path("c2c.json"));
+  EXPECT_NEAR(JsonNumber(json, "mean_m"), 0.25, 1e-6);
+  EXPECT_NEAR(JsonNumber(json, "std_m"), std::sqrt(0.0125), 1e-6);
+  EXPECT_NEAR(JsonNumber(json, "median_m"), 0.25, 1e-6);
+  EXPECT_NEAR(JsonNumber(json, "rejected_fraction"), 0.2, 1e-12);
+  EXPECT_EQ(JsonNumber(json, "count"), 4);
+}
+
+TEST_F(EvalCliTest, AteWithAndWithoutAlignment) {
+  io::WriteTum(Path("shifted.txt"), Helix([](const Eigen::Vector3d& p) {
+                 return Eigen::Vector3d(p + Eigen::Vector3d(0, 0.1, 0));
+               }));
+  io::WriteTum(Path("scaled.txt"), Helix([](const Eigen::Vector3d& p) {
+                 return Eigen::Vector3d(0.5 * p + Eigen::Vector3d(3, 1, 0));
+               }));
+  const std::string base = "eval ate --gt " + Path("gt.txt") + " --json " + Path("ate.json");
+  ASSERT_EQ(RunHylo(base + " --est " + Path("shifted.txt") + " --align none", Path("err.txt")), 0)
+      << ReadText(Path("err.txt"));
+  std::string json = ReadText(Path("ate.json"));
+  EXPECT_NEAR(JsonNumber(json, "rmse_m"), 0.1, 1e-6);
+  EXPECT_NEAR(JsonNumber(json, "max_m"), 0.1, 1e-6);
+  EXPECT_EQ(JsonNumber(json, "num_poses"), 100);
+  ASSERT_EQ(RunHylo(base + " --est " + Path("shifted.txt"), Path("err.txt")), 0);
+  EXPECT_LT(JsonNumber(ReadText(Path("ate.json")), "rmse_m"), 1e-6);
+  ASSERT_EQ(RunHylo(base + " --est " + Path("scaled.txt") + " --align sim3", Path("err.txt")), 0);
+  json = ReadText(Path("ate.json"));
+  EXPECT_NEAR(JsonNumber(json, "scale"), 2.0, 1e-6);
+  EXPECT_LT(JsonNumber(json, "rmse_m"), 1e-5);
+}
+
+TEST_F(EvalCliTest, RpeOverFramesAndMetres) {
+  // Every step 2 % longer: the 1-frame relative error is 2 % of the 0.5 m step.
+  io::WriteTum(Path("long.txt"),
+               Helix([](const Eigen::Vector3d& p) { return Eigen::Vector3d(1.02 * p); }));
+  ASSERT_EQ(RunHylo("eval rpe --est " + Path("long.txt") + " --gt " + Path("gt.txt") + " --json " +
+                        Path("rpe.json"),
+                    Path("err.txt")),
+            0)
+      << ReadText(Path("err.txt"));
+  std::string json = ReadText(Path("rpe.json"));
+  const double step_m = std::hypot(2 * 10 * std::sin(0.025), 0.005);  // chord of the helix
+  EXPECT_NEAR(JsonNumber(json, "rmse_m"), 0.02 * step_m, 1e-6);
+  EXPECT_EQ(JsonNumber(json, "num_pairs"), 99);
+  ASSERT_EQ(RunHylo("eval rpe --est " + Path("long.txt") + " --gt " + Path("gt.txt") +
+                        " --delta 5 --delta-unit m --json " + Path("rpe.json"),
+                    Path("err.txt")),
+            0);
+  json = ReadText(Path("rpe.json"));
+  // 10 chords make 4.9997 m < 5 m, so each pair spans 11 steps (0.55 rad, 5.5 cm up):
+  // 2 % of that displacement, for i = 0..88.
+  EXPECT_EQ(JsonNumber(json, "num_pairs"), 89);
+  EXPECT_NEAR(JsonNumber(json, "mean_m"), 0.02 * std::hypot(20 * std::sin(0.275), 0.055), 1e-6);
+}
+
+TEST_F(EvalCliTest, BadInputEndsInOneLineAndAnError) {
+  EXPECT_NE(
+      RunHylo("eval ate --est " + Path("missing.txt") + " --gt " + Path("gt.txt"), Path("err.txt")),
+      0);
+  const std::string err = ReadText(Path("err.txt"));
+  EXPECT_NE(err.find("missing.txt"), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+}
+
+}  // namespace
+}  // namespace hylo
