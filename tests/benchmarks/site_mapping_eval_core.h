@@ -1,0 +1,110 @@
+#pragma once
+// The offline mapping chain measured on the simulated substation (issue 8's simulator
+// figures), shared by the hylo_site_mapping_eval program and the site_mapping_test:
+//   1. session A's scans registered with the TRUE poses (each point at its own time), so the
+//      map's thickness is sensor noise only; crafting (uniform sampling + MLS) measured by the
+//      RMS distance to the simulator's exact surfaces, and timed on a 1M-point map;
+//   2. the cloth simulation filter against the hit surface of each return (ground / object);
+//   3. traversability slope against the simulator's true slope grid (site_slope.txt).
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hylo/mapping/cloth_filter.h"
+#include "hylo/mapping/craft.h"
+#include "hylo/mapping/traversability.h"
+#include "hylo/mapping/traversability_eval.h"
+#include "hylo/sim/simulator.h"
+
+namespace hylo::site_eval {
+
+struct SiteEvalOptions {
+  sim::SimulationOptions sim;        ///< site, session A length, lidar (seed included)
+  int scan_stride = 1;               ///< accumulate every n-th scan of session A (>= 1)
+  std::size_t thickness_samples = 2'000'000;  ///< raw points whose distance is measured
+                                              ///< (evenly strided subset; 0 = all)
+  mapping::CraftOptions craft;       ///< `hylo craft` defaults
+  std::size_t timing_points = 1'000'000;  ///< map size for the 1- vs 2-thread timing (0 = skip)
+  double ground_voxel_m = 0.1;       ///< one return per voxel before the ground filter, m
+  mapping::ClothFilterOptions cloth; ///< `hylo ground` defaults (the paper's)
+  mapping::TraversabilityOptions traversability;  ///< `hylo traversability` defaults
+  std::string out_dir;               ///< site_slope.txt (and nothing else) is written here
+
+  bool IsValid(std::string* why) const;
+};
+
+/// Session A accumulated in the map frame with the true poses.
+struct AccumulatedMap {
+  std::vector<Eigen::Vector3d> points_map;  ///< m
+  std::vector<uint8_t> is_ground;           ///< per point: the return hit the terrain
+  std::vector<std::size_t> scan_begin;     ///< index of each scan's first point
+  double simulate_seconds = 0.0;            ///< wall time of ray casting + registration, s
+};
+
+/// Distances of a cloud to the true surfaces.
+struct Thickness {
+  std::size_t points = 0;     ///< points measured
+  double rms_m = 0.0;         ///< RMS distance ("thickness"), m
+  double rms_ground_m = 0.0;  ///< of the points whose nearest surface is the ground, m
+  double rms_object_m = 0.0;  ///< of the points nearest to a primitive, m
+  double p95_m = 0.0;         ///< 95th percentile distance, m
+  double beyond_10cm = 0.0;   ///< fraction of points farther than 0.1 m
+};
+
+struct CraftFigures {
+  Thickness raw, sampled, crafted;  ///< input map, after uniform sampling only, after MLS
+  std::size_t crafted_points = 0;
+  double seconds = 0.0;                ///< wall time of CraftMap on the whole map, s
+  std::size_t timing_points = 0;       ///< size of the timed map
+  double seconds_1_thread = 0.0;       ///< wall time (sampling + MLS), s
+  double seconds_2_threads = 0.0;      ///< wall time (sampling + MLS), s
+  double ThicknessRatio() const { return raw.rms_m / crafted.rms_m; }
+};
+
+/// Confusion of a ground filter against the truth; ISPRS definitions (shared/data/README.md).
+struct GroundFigures {
+  std::size_t ground_as_ground = 0, ground_as_object = 0;
+  std::size_t object_as_ground = 0, object_as_object = 0;
+  double seconds = 0.0;  ///< wall time of the filter, s
+  int iterations = 0;
+  double TypeI() const;   ///< ground rejected / ground
+  double TypeII() const;  ///< objects accepted as ground / objects
+  double Total() const;   ///< misclassified / all
+  double Kappa() const;   ///< Cohen's kappa
+};
+
+struct SlopeFigures {
+  mapping::LayerComparison slope;  ///< slope (deg) on cells with data vs site_slope.txt
+  mapping::SteepCellCheck steep;   ///< cells truly steeper than the vehicle limit
+  std::size_t measured_cells = 0;
+  double seconds = 0.0;
+};
+
+struct SiteFigures {
+  AccumulatedMap map;  ///< kept so callers can inspect it
+  CraftFigures craft;
+  GroundFigures ground;
+  std::size_t ground_filter_points = 0;
+  SlopeFigures slope_csf;    ///< traversability from the cloth filter's ground (the chain)
+  SlopeFigures slope_truth;  ///< from the truly ground returns (isolates the grid's error)
+};
+
+/// The short version (CI): the simulator's coarse settings (SimulationOptions::Fast) for a
+/// 20 s session A, crafting timed on 200k points; everything else as in the full run.
+SiteEvalOptions QuickOptions(const std::string& out_dir);
+
+/// Every return of session A (every `scan_stride`-th scan) in the map frame.
+AccumulatedMap AccumulateSessionA(const sim::SimulationOptions& options,
+                                  const sim::Site& site, int scan_stride);
+
+/// Runs the three measurements. Throws std::invalid_argument on invalid options.
+SiteFigures EvaluateSite(const SiteEvalOptions& options);
+
+/// Reads the simulator's slope grid (reference_outputs.h format) as a field: the value of
+/// the cell holding (x, y), NaN outside. Throws std::runtime_error naming the file.
+mapping::TruthField ReadSimSlopeGrid(const std::string& path);
+
+}  // namespace hylo::site_eval
