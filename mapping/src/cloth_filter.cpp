@@ -1,5 +1,6 @@
 #include "hylo/mapping/cloth_filter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -36,6 +37,25 @@ registration::PointCloud InvertFinite(const registration::PointCloud& points) {
     if (p.allFinite()) inverted.emplace_back(p.x(), p.y(), -p.z());
   }
   return inverted;
+}
+
+// The points the cloth lands on: all but the isolated low outliers (which would be spikes in
+// the inverted cloud). Keeps all points when that would leave none.
+registration::PointCloud WithoutLowOutliers(const registration::PointCloud& inverted,
+                                            const ClothFilterOptions& options,
+                                            ClothFilterResult* result) {
+  if (options.low_outlier_depth_m <= 0.0) return inverted;
+  const std::vector<uint8_t> outlier =
+      cloth::FindLowOutliers(inverted, options.low_outlier_cell_m, options.low_outlier_depth_m,
+                             options.low_outlier_min_support);
+  registration::PointCloud kept;
+  kept.reserve(inverted.size());
+  for (std::size_t i = 0; i < inverted.size(); ++i) {
+    if (!outlier[i]) kept.push_back(inverted[i]);
+  }
+  if (kept.empty()) return inverted;
+  result->num_low_outliers = inverted.size() - kept.size();
+  return kept;
 }
 
 cloth::ClothDynamics DynamicsFrom(const ClothFilterOptions& options) {
@@ -100,6 +120,13 @@ bool ClothFilterOptions::IsValid(std::string* why) const {
   if (!(convergence_threshold_m >= 0.0)) {
     return Fail(why, "convergence_threshold_m", convergence_threshold_m, ">= 0");
   }
+  if (!(low_outlier_depth_m >= 0.0)) {
+    return Fail(why, "low_outlier_depth_m", low_outlier_depth_m, ">= 0");
+  }
+  if (!(low_outlier_cell_m > 0.0)) return Fail(why, "low_outlier_cell_m", low_outlier_cell_m, "> 0");
+  if (low_outlier_min_support < 1) {
+    return Fail(why, "low_outlier_min_support", low_outlier_min_support, ">= 1");
+  }
   if (!(gravity > 0.0)) return Fail(why, "gravity", gravity, "> 0");
   if (!(damping >= 0.0 && damping < 1.0)) return Fail(why, "damping", damping, "in [0, 1)");
   return true;
@@ -127,8 +154,14 @@ ClothFilterResult FilterGroundLocal(const registration::PointCloud& points_local
   const cloth::ClothGrid grid =
       cloth::ClothGrid::Covering(min_p.head<2>().cast<double>(), max_p.head<2>().cast<double>(),
                                  options.cloth_resolution_m, kBufferCells);
-  const cloth::InvertedSurface surface = cloth::RasterizeInvertedSurface(grid, inverted);
-  cloth::Cloth cloth(grid, max_p.z() + kStartClearanceM, DynamicsFrom(options));
+  const registration::PointCloud landing = WithoutLowOutliers(inverted, options, &result);
+  const cloth::InvertedSurface surface = cloth::RasterizeInvertedSurface(
+      grid, landing,
+      options.reference_hole_fill ? cloth::HoleFill::kReferenceScanline
+                                  : cloth::HoleFill::kNeighbourMean);
+  float top_z = landing.front().z();
+  for (const Eigen::Vector3f& p : landing) top_z = std::max(top_z, p.z());
+  cloth::Cloth cloth(grid, top_z + kStartClearanceM, DynamicsFrom(options));
   Simulate(options, surface.height_m, progress, &cloth, &result);
   if (options.slope_smoothing) {
     result.num_pinned_by_slope =

@@ -15,31 +15,74 @@ ClothGrid ClothGrid::Covering(const Eigen::Vector2d& min_xy, const Eigen::Vector
   grid.resolution_m = resolution_m;
   grid.origin_xy = min_xy - Eigen::Vector2d::Constant(buffer_cells * resolution_m);
   const Eigen::Vector2d extent = (max_xy - min_xy) / resolution_m;
-  grid.cols = static_cast<int>(std::floor(extent.x())) + 1 + 2 * buffer_cells;
-  grid.rows = static_cast<int>(std::floor(extent.y())) + 1 + 2 * buffer_cells;
+  grid.cols = static_cast<int>(std::floor(extent.x())) + 2 * buffer_cells;
+  grid.rows = static_cast<int>(std::floor(extent.y())) + 2 * buffer_cells;
   return grid;
 }
+
+namespace {
+
+// Springs of a particle as (dcol, drow) offsets: first the 8 immediate neighbours (grid
+// distance 1 and sqrt(2)), then the 8 secondary ones (distance 2 and 2 sqrt(2)), the model of
+// the reference implementation (jianboqi/CSF). The order is the order in which that
+// implementation ends up visiting a particle's springs; it matters a little because the
+// constraint sweep updates heights in place.
+constexpr int kSpringOffsets[16][2] = {
+    {-1, -1}, {-1, 0}, {-1, 1}, {0, -1}, {1, -1}, {1, 0}, {0, 1}, {1, 1},
+    {-2, -2}, {-2, 0}, {-2, 2}, {0, -2}, {2, -2}, {2, 0}, {0, 2}, {2, 2}};
+
+// The paper's rigidness RI is the number of times a constraint is satisfied per step (Sec. 2.2).
+// The reference implementation moves a particle by 0.3 of the height gap per pass and applies
+// the RI passes in one go: a movable particle tied to a pinned one closes 1 - 0.7^RI of the gap;
+// two movable particles close 1 - 0.4^RI of it together, half each.
+constexpr double kPassFraction = 0.3;
+
+double SingleFactor(int rigidness) { return 1.0 - std::pow(1.0 - kPassFraction, rigidness); }
+
+double PairFactor(int rigidness) {
+  return 0.5 * (1.0 - std::pow(1.0 - 2.0 * kPassFraction, rigidness));
+}
+
+}  // namespace
 
 Cloth::Cloth(const ClothGrid& grid, double start_height_m, const ClothDynamics& dynamics)
     : grid_(grid),
       dynamics_(dynamics),
+      pair_factor_(PairFactor(dynamics.rigidness)),
+      single_factor_(SingleFactor(dynamics.rigidness)),
       height_(grid.Size(), start_height_m),
       previous_height_(grid.Size(), start_height_m),
       movable_(grid.Size(), 1) {
   HYLO_CHECK(grid.cols > 0 && grid.rows > 0, "non-empty grid");
   HYLO_CHECK(dynamics.rigidness >= 1, "rigidness >= 1");
+  BuildSprings();
+}
+
+void Cloth::BuildSprings() {
+  spring_begin_.assign(grid_.Size() + 1, 0);
+  spring_end_.clear();
+  spring_end_.reserve(grid_.Size() * 16);
+  for (int row = 0; row < grid_.rows; ++row) {
+    for (int col = 0; col < grid_.cols; ++col) {
+      for (const auto& offset : kSpringOffsets) {
+        const int c = col + offset[0], r = row + offset[1];
+        if (grid_.Contains(c, r)) spring_end_.push_back(static_cast<uint32_t>(grid_.Index(c, r)));
+      }
+      spring_begin_[grid_.Index(col, row) + 1] = static_cast<uint32_t>(spring_end_.size());
+    }
+  }
 }
 
 double Cloth::Step(const std::vector<double>& surface_height_m) {
   HYLO_CHECK(surface_height_m.size() == height_.size(), "one surface height per particle");
-  const std::vector<double> before = height_;
   ApplyGravity();
   SatisfyConstraints();
-  Collide(surface_height_m);
+  // previous_height_ holds the height before this step for every movable particle.
   double max_move_m = 0.0;
   for (std::size_t i = 0; i < height_.size(); ++i) {
-    max_move_m = std::max(max_move_m, std::abs(height_[i] - before[i]));
+    if (movable_[i]) max_move_m = std::max(max_move_m, std::abs(height_[i] - previous_height_[i]));
   }
+  Collide(surface_height_m);
   return max_move_m;
 }
 
@@ -55,47 +98,35 @@ void Cloth::ApplyGravity() {
   }
 }
 
-// Internal forces (paper Sec. 2.2, Eq. (5)): a movable particle moves by half the height
-// difference to a connected particle, d = 1/2 b (p_i - p_0) . n, and the pass is repeated RI
-// times, so a particle tied to a pinned one closes 1/2, 3/4, 7/8 of the gap for RI = 1, 2, 3
-// while two movable ones meet halfway. Passes update in place (Gauss-Seidel).
-// Particles are tied as in a mass-spring cloth (Provot 1995, the model CSF builds on):
-// structural springs to the 4 neighbours, shear springs to the diagonals and bend springs two
-// cells away. The shear and bend springs make the cloth resist sagging into wide gaps (a
-// building seen from below) far more than 4-neighbour springs alone: on the ISPRS samples,
-// 4-neighbour springs alone let the cloth sink onto roofs (type II error 12-28 %).
+// Internal forces (paper Sec. 2.2, Eq. (5)-(6)): particles move vertically towards the
+// particles they are tied to. One sweep per step over the particles in grid order; each
+// particle relaxes each of its springs in place (Gauss-Seidel), so every spring is relaxed
+// from both of its ends, with the RI passes folded into the factors (see PairFactor).
 void Cloth::SatisfyConstraints() {
-  // Offsets (dcol, drow) of the springs starting at a particle, each pair listed once.
-  static constexpr int kSprings[8][2] = {{1, 0}, {0, 1}, {1, 1}, {1, -1},
-                                         {2, 0}, {0, 2}, {2, 2}, {2, -2}};
-  for (int pass = 0; pass < dynamics_.rigidness; ++pass) {
-    for (int row = 0; row < grid_.rows; ++row) {
-      for (int col = 0; col < grid_.cols; ++col) {
-        const std::size_t here = grid_.Index(col, row);
-        for (const auto& spring : kSprings) {
-          const int c = col + spring[0];
-          const int r = row + spring[1];
-          if (grid_.Contains(c, r)) Relax(here, grid_.Index(c, r));
-        }
+  const std::size_t count = height_.size();
+  for (std::size_t a = 0; a < count; ++a) {
+    const bool a_moves = movable_[a] != 0;
+    for (uint32_t s = spring_begin_[a]; s < spring_begin_[a + 1]; ++s) {
+      const uint32_t b = spring_end_[s];
+      const bool b_moves = movable_[b] != 0;
+      const double gap_m = height_[b] - height_[a];
+      if (a_moves && b_moves) {
+        height_[a] += pair_factor_ * gap_m;
+        height_[b] -= pair_factor_ * gap_m;
+      } else if (a_moves) {
+        height_[a] += single_factor_ * gap_m;
+      } else if (b_moves) {
+        height_[b] -= single_factor_ * gap_m;
       }
     }
   }
 }
 
-void Cloth::Relax(std::size_t a, std::size_t b) {
-  const bool a_moves = movable_[a] != 0;
-  const bool b_moves = movable_[b] != 0;
-  if (!a_moves && !b_moves) return;
-  const double half_gap_m = 0.5 * (height_[b] - height_[a]);
-  if (a_moves) height_[a] += half_gap_m;
-  if (b_moves) height_[b] -= half_gap_m;
-}
-
-// Collision (paper Sec. 2.2): a particle that reaches or passes the surface under it is put
-// on the surface and stops moving.
+// Collision (paper Sec. 2.2): a particle that falls below the surface under it is put on the
+// surface and stops moving.
 void Cloth::Collide(const std::vector<double>& surface_height_m) {
   for (std::size_t i = 0; i < height_.size(); ++i) {
-    if (movable_[i] && height_[i] <= surface_height_m[i]) Pin(i, surface_height_m[i]);
+    if (movable_[i] && height_[i] < surface_height_m[i]) Pin(i, surface_height_m[i]);
   }
 }
 

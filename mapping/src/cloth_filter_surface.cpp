@@ -1,6 +1,8 @@
 #include "hylo/mapping/cloth_filter_surface.h"
 
+#include <algorithm>
 #include <cmath>
+#include <unordered_map>
 #include <limits>
 
 #include "hylo/common/check.h"
@@ -13,7 +15,8 @@ constexpr int kNeighbourRow[4] = {0, 0, 1, -1};
 }  // namespace
 
 InvertedSurface RasterizeInvertedSurface(const ClothGrid& grid,
-                                         const registration::PointCloud& points_inverted) {
+                                         const registration::PointCloud& points_inverted,
+                                         HoleFill hole_fill) {
   InvertedSurface surface;
   surface.height_m.assign(grid.Size(), kUnknown);
   std::vector<double> best_distance2(grid.Size(), std::numeric_limits<double>::infinity());
@@ -29,7 +32,9 @@ InvertedSurface RasterizeInvertedSurface(const ClothGrid& grid,
       surface.height_m[index] = p.z();
     }
   }
-  surface.num_filled_holes = FillHoles(grid, &surface.height_m);
+  surface.num_filled_holes = hole_fill == HoleFill::kReferenceScanline
+                                 ? FillHolesAsReference(grid, &surface.height_m)
+                                 : FillHoles(grid, &surface.height_m);
   return surface;
 }
 
@@ -82,6 +87,119 @@ std::size_t FillHoles(const ClothGrid& grid, std::vector<double>* height_m) {
     frontier.swap(ring);
   }
   return filled;
+}
+
+namespace {
+
+// For every particle of a line (`count` particles, the k-th at index first + k * stride), the
+// height of the first measured particle after it (`forward`) or before it (otherwise) on that
+// line; NaN when there is none.
+void ScanLine(const std::vector<double>& measured, std::size_t first, std::size_t stride,
+              int count, bool forward, std::vector<double>* found) {
+  double last = kUnknown;
+  for (int k = 0; k < count; ++k) {
+    const int step = forward ? count - 1 - k : k;
+    const std::size_t i = first + static_cast<std::size_t>(step) * stride;
+    (*found)[i] = last;
+    if (!std::isnan(measured[i])) last = measured[i];
+  }
+}
+
+// Gives every NaN entry the value of a nearest (4-neighbour steps) entry with a value, by one
+// breadth-first pass from all of them. Only for holes whose row and column hold no measured
+// particle at all (a few points in a large, nearly empty grid).
+void FloodRemaining(const ClothGrid& grid, std::vector<double>* height_m) {
+  std::vector<double>& height = *height_m;
+  std::vector<std::size_t> queue;
+  for (std::size_t i = 0; i < height.size(); ++i) {
+    if (!std::isnan(height[i])) queue.push_back(i);
+  }
+  for (std::size_t k = 0; k < queue.size(); ++k) {
+    const std::size_t i = queue[k];
+    const int col = static_cast<int>(i % grid.cols);
+    const int row = static_cast<int>(i / grid.cols);
+    for (int n = 0; n < 4; ++n) {
+      const int c = col + kNeighbourCol[n], r = row + kNeighbourRow[n];
+      if (!grid.Contains(c, r) || !std::isnan(height[grid.Index(c, r)])) continue;
+      height[grid.Index(c, r)] = height[i];
+      queue.push_back(grid.Index(c, r));
+    }
+  }
+}
+
+}  // namespace
+
+// The reference implementation (jianboqi/CSF) fills a particle without points with the height
+// of the first measured particle found scanning its row towards +x, else towards -x, else its
+// column towards -y, else towards +y. Under large gaps (water, occlusions) this extends the
+// terrain at the gap's edge flat across it, so that the cloth rests there instead of sagging.
+std::size_t FillHolesAsReference(const ClothGrid& grid, std::vector<double>* height_m) {
+  HYLO_CHECK(height_m != nullptr && height_m->size() == grid.Size(), "one height per particle");
+  const std::vector<double> measured = *height_m;
+  std::vector<double> plus_x(grid.Size()), minus_x(grid.Size());
+  std::vector<double> plus_y(grid.Size()), minus_y(grid.Size());
+  for (int row = 0; row < grid.rows; ++row) {
+    const std::size_t first = grid.Index(0, row);
+    ScanLine(measured, first, 1, grid.cols, true, &plus_x);
+    ScanLine(measured, first, 1, grid.cols, false, &minus_x);
+  }
+  for (int col = 0; col < grid.cols; ++col) {
+    const std::size_t first = grid.Index(col, 0);
+    ScanLine(measured, first, grid.cols, grid.rows, true, &plus_y);
+    ScanLine(measured, first, grid.cols, grid.rows, false, &minus_y);
+  }
+  std::vector<double>& height = *height_m;
+  std::size_t filled = 0;
+  for (std::size_t i = 0; i < height.size(); ++i) {
+    if (!std::isnan(measured[i])) continue;
+    for (const std::vector<double>* scan : {&plus_x, &minus_x, &minus_y, &plus_y}) {
+      if (std::isnan(height[i])) height[i] = (*scan)[i];
+    }
+    ++filled;
+  }
+  HYLO_CHECK(filled < height.size(), "no point inside the cloth grid");
+  FloodRemaining(grid, height_m);
+  return filled;
+}
+
+// Low outliers (multipath returns, metres or tens of metres below the terrain, as in the ISPRS
+// samples 31 and 41) are spikes in the inverted cloud: the cloth lands on them first and hangs
+// there, tented over the terrain around them. Not in the paper; an addition of ours.
+// A point is one when fewer than `min_support` other points of its 3x3 block of cells reach
+// within `depth_m` of it (inverted: are no more than depth_m below it). Counting uses one sorted
+// height list per cell, so the cost is a few binary searches per point.
+std::vector<uint8_t> FindLowOutliers(const registration::PointCloud& points_inverted,
+                                     double cell_m, double depth_m, int min_support) {
+  HYLO_CHECK(cell_m > 0.0 && depth_m > 0.0 && min_support >= 1, "outlier parameters");
+  const auto key = [cell_m](float x, float y) {
+    const int64_t cx = static_cast<int64_t>(std::floor(x / cell_m));
+    const int64_t cy = static_cast<int64_t>(std::floor(y / cell_m));
+    return std::make_pair(cx, cy);
+  };
+  const auto pack = [](int64_t cx, int64_t cy) { return (cx << 32) ^ (cy & 0xffffffffLL); };
+  std::unordered_map<int64_t, std::vector<float>> heights;
+  for (const Eigen::Vector3f& p : points_inverted) {
+    const auto [cx, cy] = key(p.x(), p.y());
+    heights[pack(cx, cy)].push_back(p.z());
+  }
+  for (auto& entry : heights) std::sort(entry.second.begin(), entry.second.end());
+  std::vector<uint8_t> outlier(points_inverted.size(), 0);
+  for (std::size_t i = 0; i < points_inverted.size(); ++i) {
+    const Eigen::Vector3f& p = points_inverted[i];
+    const auto [cx, cy] = key(p.x(), p.y());
+    const float floor_z = static_cast<float>(p.z() - depth_m);
+    int support = -1;  // the point itself is counted below
+    for (int dx = -1; dx <= 1 && support < min_support; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        const auto it = heights.find(pack(cx + dx, cy + dy));
+        if (it == heights.end()) continue;
+        const std::vector<float>& z = it->second;
+        support += static_cast<int>(z.end() - std::lower_bound(z.begin(), z.end(), floor_z));
+      }
+    }
+    outlier[i] = support < min_support;
+  }
+  return outlier;
 }
 
 }  // namespace hylo::mapping::cloth

@@ -21,16 +21,15 @@ namespace hylo::mapping {
 namespace {
 
 // Regression bounds on the ISPRS mean total error over the 7 samples, %. One parameter set for
-// all samples (no per-file tuning). Measured: 14.53 with the defaults (RI 3, a hard cloth for
-// flat terrain) and 8.75 with RI 1 (the paper's setting for rugged terrain); the paper reports
-// 4.39 with GR/RI/ST chosen per sample. The bounds sit ~10 % above the measured figures so
-// that a change making the filter worse fails, without flapping on harmless reorderings.
-constexpr double kIsprsMeanTotalBoundDefaultsPercent = 16.0;
-constexpr double kIsprsMeanTotalBoundRuggedPercent = 9.7;
-// Agreement with the reference implementation's split of csf_sample. Target 98 %; measured
-// 97.99 % (this is a re-implementation from the paper, not a port: the reference's constraint
-// factors and post-processing details differ). The bound guards the measured level.
-constexpr double kCsfSampleMinAgreement = 0.975;
+// all samples (no per-file tuning). Measured: 7.19 with the defaults (RI 3) and 6.71 with RI 1
+// (the paper's setting for rugged terrain); the paper reports 4.38 for these 7 samples with
+// GR/RI/ST chosen per sample. The bounds sit ~10 % above the measured figures so that a change
+// making the filter worse fails, without flapping on harmless reorderings.
+constexpr double kIsprsMeanTotalBoundDefaultsPercent = 8.0;
+constexpr double kIsprsMeanTotalBoundRuggedPercent = 7.4;
+// Agreement with the reference implementation's split of csf_sample when run as that release
+// runs (its hole filling and its dT^2-twice gravity). Target 98 %; measured 99.65 %.
+constexpr double kCsfSampleMinAgreement = 0.99;
 
 struct LabelledCloud {
   registration::PointCloud points;
@@ -301,7 +300,9 @@ TEST(ClothFilterIsprs, ErrorsPerSampleNextToThePublishedOnes) {
 }
 
 // The reference implementation's split of csf_sample (rigidness 3, slope smoothing, GR 1,
-// hcc 0.5, 500 iterations, dT 0.65 = the defaults).
+// hcc 0.5, 500 iterations, dT 0.65 = the defaults), run with the two reference-release
+// behaviours that our defaults deliberately do not follow (see ClothFilterOptions): the row/
+// column hole filling and gravity scaled by dT^2 twice. With our defaults it agrees 97.6 %.
 TEST(ClothFilterCsfSample, AgreesWithTheReferenceSplit) {
   HYLO_REQUIRE_DATA("csf_sample/sample.ply");
   const io::CloudFile cloud = io::ReadCloud(testing::DataPath("csf_sample/sample.ply"));
@@ -319,6 +320,8 @@ TEST(ClothFilterCsfSample, AgreesWithTheReferenceSplit) {
   options.class_threshold_m = 0.5;
   options.max_iterations = 500;
   options.time_step = 0.65;
+  options.reference_hole_fill = true;
+  options.gravity = 0.2 * options.time_step * options.time_step;
   const ClothFilterResult result = FilterGround(cloud.positions, options);
   ASSERT_TRUE(result.ok) << result.message;
   std::size_t agree = 0;

@@ -35,8 +35,22 @@ struct ClothFilterOptions {
                                            ///< more than this many particles (>= 0)
   double convergence_threshold_m = 0.005;  ///< stop when no particle moved more than this in one
                                            ///< step, m (>= 0; 0 = run all iterations)
+  bool reference_hole_fill = false;  ///< fill particles without points as jianboqi/CSF does
+                                     ///< (first measured particle along the row, then the
+                                     ///< column) instead of the mean of known neighbours; the
+                                     ///< mean copes better with wide gaps (ISPRS samples)
+  double low_outlier_depth_m = 3.0;  ///< points this far below nearly all their neighbours
+                                     ///< are left out of the surface the cloth lands on (they
+                                     ///< are still classified), m (>= 0; 0 = keep all)
+  double low_outlier_cell_m = 2.0;   ///< neighbourhood for that test: 3x3 cells of this size, m
+                                     ///< (> 0)
+  int low_outlier_min_support = 3;   ///< a point needs this many neighbours within
+                                     ///< low_outlier_depth_m of it to stay (>= 1)
   double gravity = 0.2;   ///< downward acceleration in cloth units per step^2 (> 0); with dT 0.65
-                          ///< a free particle falls 0.085 m in its first step
+                          ///< a free particle falls 0.085 m in its first step. The reference
+                          ///< release that produced csf_sample multiplies by dT^2 twice
+                          ///< (0.2 * 0.65^2 here reproduces it); that stiffer cloth hangs on
+                          ///< rough terrain, so the default keeps Eq. (3) as written
   double damping = 0.01;  ///< fraction of the previous step's velocity lost per step, [0, 1)
 
   /// False (with the field, its value and the constraint in *why) when a field is out of range.
@@ -66,6 +80,7 @@ struct ClothFilterResult {
   int cloth_rows = 0;                    ///< particles along y
   std::size_t num_hole_particles = 0;    ///< particles with no point under them (filled)
   std::size_t num_pinned_by_slope = 0;   ///< particles pinned by slope post-processing
+  std::size_t num_low_outliers = 0;      ///< points left out of the surface as low outliers
   Eigen::Vector3d origin_world = Eigen::Vector3d::Zero();  ///< shift used to compute near zero
 };
 

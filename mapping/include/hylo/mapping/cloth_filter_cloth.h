@@ -1,8 +1,8 @@
 #pragma once
 // The cloth of the cloth simulation filter (Zhang et al. 2016, Sec. 2.2): a regular grid of
 // particles that move only vertically, under gravity (Verlet integration) and internal
-// constraints (structural, shear and bend springs), and stop when they reach the inverted
-// surface.
+// constraints (structural, shear and bend springs, as in the reference implementation
+// jianboqi/CSF), and stop when they reach the inverted surface.
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -33,7 +33,7 @@ struct ClothDynamics {
   double gravity = 0.2;     ///< acceleration, cloth units per step^2
   double time_step = 0.65;  ///< paper dT
   double damping = 0.01;    ///< velocity fraction lost per step
-  int rigidness = 3;        ///< paper RI: constraint passes per step
+  int rigidness = 3;        ///< paper RI: constraint passes per step, applied in closed form
 };
 
 class Cloth {
@@ -42,7 +42,9 @@ class Cloth {
   Cloth(const ClothGrid& grid, double start_height_m, const ClothDynamics& dynamics);
 
   /// One simulation step: gravity, internal constraints, collision with `surface_height_m`
-  /// (one height per particle). Returns the largest vertical move of any particle, m.
+  /// (one height per particle). Returns the largest vertical move, over gravity and
+  /// constraints, of the particles still movable before the collision check, m (0 when none
+  /// is movable: the cloth has settled).
   double Step(const std::vector<double>& surface_height_m);
 
   /// Fixes particle `index` at `height_m` (it no longer moves).
@@ -57,13 +59,17 @@ class Cloth {
   bool IsMovable(std::size_t index) const { return movable_[index] != 0; }
 
  private:
+  void BuildSprings();
   void ApplyGravity();
   void SatisfyConstraints();
-  void Relax(std::size_t a, std::size_t b);
   void Collide(const std::vector<double>& surface_height_m);
 
   ClothGrid grid_;
   ClothDynamics dynamics_;
+  double pair_factor_ = 0.0;    ///< gap fraction each of two movable particles closes
+  double single_factor_ = 0.0;  ///< gap fraction a movable particle closes to a pinned one
+  std::vector<uint32_t> spring_begin_;  ///< springs of particle i: spring_end_[begin[i]..[i+1])
+  std::vector<uint32_t> spring_end_;    ///< the particle at the other end of each spring
   std::vector<double> height_;           ///< current height per particle, m
   std::vector<double> previous_height_;  ///< height one step ago (Verlet), m
   std::vector<uint8_t> movable_;         ///< 1 while the particle may move

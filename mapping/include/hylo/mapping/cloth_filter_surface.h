@@ -2,9 +2,10 @@
 // The surface the cloth lands on (Zhang et al. 2016, Sec. 2.2, "intersection check"): for each
 // particle, the height of the inverted point nearest to it horizontally among the points of its
 // cell. Particles with no point (gaps, water, the grid border) get a height filled in from
-// their neighbours, so that every particle has something to stop on.
+// measured particles, so that every particle has something to stop on.
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "hylo/mapping/cloth_filter_cloth.h"
@@ -17,14 +18,32 @@ struct InvertedSurface {
   std::size_t num_filled_holes = 0;  ///< particles whose height was filled in
 };
 
+/// How particles without a point of their own get a height.
+enum class HoleFill {
+  kNeighbourMean,      ///< rings of holes take the mean of their known 4-neighbours
+  kReferenceScanline,  ///< as jianboqi/CSF: first measured particle along the row, then column
+};
+
 /// `points_inverted` must be finite and inside the grid (the grid covers their bounding box).
 /// Throws hylo::InternalError when no point falls in the grid (the caller checks for empty
 /// clouds first).
 InvertedSurface RasterizeInvertedSurface(const ClothGrid& grid,
-                                         const registration::PointCloud& points_inverted);
+                                         const registration::PointCloud& points_inverted,
+                                         HoleFill hole_fill = HoleFill::kNeighbourMean);
 
 /// Fills NaN entries of `height_m` breadth-first from the known ones: each ring of unknown
 /// particles takes the mean of its already-known 4-neighbours. Returns how many were filled.
 std::size_t FillHoles(const ClothGrid& grid, std::vector<double>* height_m);
+
+/// Fills NaN entries of `height_m` as the reference implementation does: the first measured
+/// particle along the row (towards +x, then -x), else along the column (towards -y, then +y);
+/// holes with neither take a nearest filled value. Returns how many were filled.
+std::size_t FillHolesAsReference(const ClothGrid& grid, std::vector<double>* height_m);
+
+/// Flags (1) the points of `points_inverted` that stand more than `depth_m` above (inverted:
+/// below, in the original cloud) all but fewer than `min_support` of the other points in the
+/// 3x3 block of `cell_m` cells around them: isolated low outliers, which the cloth would hang on.
+std::vector<uint8_t> FindLowOutliers(const registration::PointCloud& points_inverted,
+                                     double cell_m, double depth_m, int min_support);
 
 }  // namespace hylo::mapping::cloth
