@@ -13,6 +13,7 @@ namespace hylo::cli {
 void AddInfoCommand(CLI::App& root);
 void AddCraftCommand(CLI::App& root);
 void AddGroundCommand(CLI::App& root);
+void AddMapCommand(CLI::App& root);
 void AddSimulateCommand(CLI::App& root);
 void AddTraversabilityCommand(CLI::App& root);
 void AddEvalCommand(CLI::App& root);

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   hylo::cli::AddInfoCommand(app);
   hylo::cli::AddCraftCommand(app);
   hylo::cli::AddGroundCommand(app);
+  hylo::cli::AddMapCommand(app);
   hylo::cli::AddSimulateCommand(app);
   hylo::cli::AddTraversabilityCommand(app);
   hylo::cli::AddEvalCommand(app);

@@ -126,5 +126,40 @@ TEST(TransformConfig, RollPitchYawComposeAsZYX) {
   EXPECT_TRUE(x_rotated.isApprox(Eigen::Vector3d::UnitY(), 1e-12));
 }
 
+TEST(RunConfig, OdometrySectionsParseValidateAndRoundTrip) {
+  const RunConfig config = ParseRunConfig(
+      "preprocess: {scan_voxel_m: 0.4}\n"
+      "ieskf: {max_iterations: 6, online_extrinsic: true}\n"
+      "planes: {planarity_threshold_m: 0.05}\n"
+      "map: {voxel_size_m: 0.3, window_size_m: 0}\n"
+      "init: {duration_s: 2.0}\n",
+      "test.yaml");
+  EXPECT_DOUBLE_EQ(config.preprocess.scan_voxel_m, 0.4);
+  EXPECT_EQ(config.ieskf.max_iterations, 6);
+  EXPECT_TRUE(config.ieskf.online_extrinsic);
+  const RunConfig back = ParseRunConfig(ToYaml(config), "saved.yaml");
+  EXPECT_DOUBLE_EQ(back.planes.planarity_threshold_m, 0.05);
+  EXPECT_DOUBLE_EQ(back.map.voxel_size_m, 0.3);
+  EXPECT_DOUBLE_EQ(back.map.window_size_m, 0.0);
+  EXPECT_DOUBLE_EQ(back.init.duration_s, 2.0);
+  const estimation::OdometryPipelineOptions pipeline = back.PipelineOptions();
+  std::string why;
+  EXPECT_TRUE(pipeline.IsValid(&why)) << why;
+  EXPECT_EQ(pipeline.estimator.ieskf.max_iterations, 6);
+  EXPECT_DOUBLE_EQ(pipeline.preprocess.max_range_m, back.lidar.max_range_m);
+}
+
+TEST(RunConfig, OdometrySectionsRejectUnknownKeysAndBadValues) {
+  ExpectConfigError("ieskf: {max_iteration: 3}\n", {"ieskf.max_iteration"});
+  ExpectConfigError("ieskf: {max_iterations: 0}\n", {"ieskf.max_iterations", ">= 1"});
+  ExpectConfigError("planes: {num_neighbors: 2}\n", {"planes.num_neighbors"});
+  ExpectConfigError("map: {voxel_size_m: -1}\n", {"map.voxel_size_m"});
+}
+
+TEST(RunConfig, ImuNoneSelectsTheNoImuPipeline) {
+  const RunConfig config = ParseRunConfig("imu: none\n", "test.yaml");
+  EXPECT_FALSE(config.PipelineOptions().estimator.use_imu);
+}
+
 }  // namespace
 }  // namespace hylo::config

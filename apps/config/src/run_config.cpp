@@ -84,7 +84,33 @@ bool RunConfig::IsValid(std::string* why) const {
   if (backend != "ieskf" && backend != "sliding_window")
     return Invalid(why, "backend", backend, "must be ieskf or sliding_window");
   return SectionValid(lidar, "lidar", why) && SectionValid(imu, "imu", why) &&
-         SectionValid(T_imu_lidar, "T_imu_lidar", why);
+         SectionValid(T_imu_lidar, "T_imu_lidar", why) &&
+         SectionValid(preprocess, "preprocess", why) && SectionValid(init, "init", why) &&
+         SectionValid(ieskf, "ieskf", why) && SectionValid(planes, "planes", why) &&
+         SectionValid(map, "map", why);
+}
+
+estimation::OdometryPipelineOptions RunConfig::PipelineOptions() const {
+  estimation::OdometryPipelineOptions o;
+  if (!estimation::ParseBackend(backend, &o.estimator.backend)) {
+    throw ConfigError("backend = " + backend + ": unknown estimator back-end");
+  }
+  o.estimator.use_imu = imu.enabled;
+  o.estimator.imu_noise = imu.noise;
+  o.estimator.ieskf = ieskf;
+  o.gravity_mps2 = imu.gravity_mps2;
+  o.init = init;
+  // A gap is five missing samples at the nominal rate.
+  o.queue.imu_gap_ns = static_cast<int64_t>(std::llround(5e9 / imu.rate_hz));
+  o.preprocess = preprocess;
+  o.preprocess.min_range_m = lidar.min_range_m;
+  o.preprocess.max_range_m = lidar.max_range_m;
+  o.planes = planes;
+  o.map = map;
+  const Eigen::Isometry3d T = T_imu_lidar.ToIsometry();
+  o.T_imu_lidar = estimation::lie::SE3d(estimation::lie::SO3d::FromMatrix(T.linear()),
+                                        T.translation());
+  return o;
 }
 
 io::LogReadOptions RunConfig::LogOptions() const {

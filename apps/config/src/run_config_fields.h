@@ -41,11 +41,72 @@ void VisitFields(V& v, TransformConfig& transform) {
 }
 
 template <class V>
+void VisitFields(V& v, estimation::PreprocessOptions& o) {
+  v("scan_voxel_m", o.scan_voxel_m);
+  v("max_point_offset_s", o.max_point_offset_s);
+  v("min_points", o.min_points);
+  v("deskew", o.deskew);
+}
+
+template <class V>
+void VisitFields(V& v, estimation::ImuInitializerOptions& o) {
+  v("duration_s", o.duration_s);
+  v("max_accel_std_mps2", o.max_accel_std_mps2);
+  v("max_gyro_std_radps", o.max_gyro_std_radps);
+  v("max_gyro_mean_radps", o.max_gyro_mean_radps);
+  v("gravity_tolerance_mps2", o.gravity_tolerance_mps2);
+}
+
+template <class V>
+void VisitFields(V& v, estimation::IeskfOptions& o) {
+  v("max_iterations", o.max_iterations);
+  v("convergence_rotation_rad", o.convergence_rotation_rad);
+  v("convergence_translation_m", o.convergence_translation_m);
+  v("rematch_threshold", o.rematch_threshold);
+  v("lidar_noise_m", o.lidar_noise_m);
+  v("min_matches", o.min_matches);
+  v("online_extrinsic", o.online_extrinsic);
+  v("min_translation_information", o.min_translation_information);
+  v("min_rotation_information", o.min_rotation_information);
+  v("init_rotation_sigma_rad", o.init_rotation_sigma_rad);
+  v("init_velocity_sigma_mps", o.init_velocity_sigma_mps);
+  v("init_gyro_bias_sigma_radps", o.init_gyro_bias_sigma_radps);
+  v("init_accel_bias_sigma_mps2", o.init_accel_bias_sigma_mps2);
+  v("init_gravity_sigma_mps2", o.init_gravity_sigma_mps2);
+  v("init_extrinsic_rotation_sigma_rad", o.init_extrinsic_rotation_sigma_rad);
+  v("init_extrinsic_translation_sigma_m", o.init_extrinsic_translation_sigma_m);
+  v("cv_translation_noise", o.cv_translation_noise);
+  v("cv_rotation_noise", o.cv_rotation_noise);
+  v("no_imu_yaw_search_deg", o.no_imu_yaw_search_deg);
+  v("no_imu_yaw_search_step_deg", o.no_imu_yaw_search_step_deg);
+}
+
+template <class V>
+void VisitFields(V& v, registration::PlaneMatcherOptions& o) {
+  v("num_neighbors", o.num_neighbors);
+  v("max_neighbor_distance_m", o.max_neighbor_distance_m);
+  v("planarity_threshold_m", o.planarity_threshold_m);
+  v("range_gate_factor", o.range_gate_factor);
+}
+
+template <class V>
+void VisitFields(V& v, mapping::MapManagerOptions& o) {
+  v("voxel_size_m", o.voxel_size_m);
+  v("window_size_m", o.window_size_m);
+  v("window_margin_m", o.window_margin_m);
+}
+
+template <class V>
 void VisitFields(V& v, RunConfig& run) {
   v("backend", run.backend);
   v.Section("lidar", run.lidar);
   v.OptionalSection("imu", run.imu, run.imu.enabled);
   v.Section("T_imu_lidar", run.T_imu_lidar);
+  v.Section("preprocess", run.preprocess);
+  v.Section("init", run.init);
+  v.Section("ieskf", run.ieskf);
+  v.Section("planes", run.planes);
+  v.Section("map", run.map);
 }
 
 }  // namespace hylo::config

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "hylo/estimation/imu_noise.h"
+#include "hylo/estimation/odometry_pipeline.h"
 #include "hylo/io/log_reader.h"
 
 namespace hylo::config {
@@ -56,11 +57,19 @@ struct RunConfig {
   LidarConfig lidar;
   ImuConfig imu;
   TransformConfig T_imu_lidar;    ///< maps points from the lidar frame to the IMU frame
+  // Odometry (issue 5). lidar.min/max_range_m feed the pre-processing ranges.
+  estimation::PreprocessOptions preprocess;       ///< scan clean-up and downsampling
+  estimation::ImuInitializerOptions init;         ///< static IMU initialisation
+  estimation::IeskfOptions ieskf;                 ///< the IESKF back-end
+  registration::PlaneMatcherOptions planes;       ///< point-to-plane association
+  mapping::MapManagerOptions map;                 ///< map downsampling and local window
 
   /// Checks every section; *why names the field (with its section), value and constraint.
   bool IsValid(std::string* why) const;
   /// The streams to read from a log, as io::OpenLog takes them.
   io::LogReadOptions LogOptions() const;
+  /// The odometry pipeline settings of this run (estimator, IMU, extrinsic, sections above).
+  estimation::OdometryPipelineOptions PipelineOptions() const;
 };
 
 /// Parses YAML text. Throws ConfigError naming `source_name`, the key path and the reason for

@@ -1,0 +1,50 @@
+#pragma once
+// Static IMU initialisation: with the vehicle at rest, the mean specific force is gravity seen
+// in the IMU frame (roll, pitch and the gravity magnitude), the mean rate is the gyro bias.
+// Yaw is unobservable and set to zero (the map frame is defined by the first pose).
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "hylo/estimation/measurements.h"
+#include "hylo/estimation/nav_state.h"
+
+namespace hylo::estimation {
+
+struct ImuInitializerOptions {
+  double duration_s = 1.0;               ///< rest period averaged, s (> 0)
+  double max_accel_std_mps2 = 0.15;      ///< larger spread of |a| means moving, m/s² (> 0)
+  double max_gyro_std_radps = 0.02;      ///< larger spread of ω means moving, rad/s (> 0)
+  double max_gyro_mean_radps = 0.05;     ///< larger mean rate is turning, not bias, rad/s (> 0)
+  double gravity_tolerance_mps2 = 0.3;   ///< | |mean a| − g | must stay below, m/s² (> 0)
+  bool IsValid(std::string* why) const;
+};
+
+class ImuInitializer {
+ public:
+  enum class Status { kCollecting, kDone, kFailed };
+
+  ImuInitializer(const ImuInitializerOptions& options, double gravity_mps2);
+
+  /// Adds a sample; once `duration_s` is covered, decides (kDone or kFailed).
+  Status Add(const ImuSample& sample);
+
+  Status status() const { return status_; }
+  /// The initial state (valid when kDone): rotation from gravity, gyro bias, t_ns = last sample.
+  const NavState& state() const { return state_; }
+  /// Why it failed (kFailed), with the measured figures.
+  const std::string& message() const { return message_; }
+
+ private:
+  void Decide();
+
+  ImuInitializerOptions options_;
+  double gravity_mps2_;
+  std::vector<ImuSample> samples_;
+  Status status_ = Status::kCollecting;
+  NavState state_;
+  std::string message_;
+};
+
+}  // namespace hylo::estimation

@@ -1,0 +1,81 @@
+#include "hylo/estimation/measurement_queue.h"
+
+#include <sstream>
+
+namespace hylo::estimation {
+
+bool MeasurementQueueOptions::IsValid(std::string* why) const {
+  if (imu_gap_ns > 0) return true;
+  if (why != nullptr) {
+    std::ostringstream os;
+    os << "imu_gap_ns = " << imu_gap_ns << ": must be > 0";
+    *why = os.str();
+  }
+  return false;
+}
+
+MeasurementQueue::MeasurementQueue(const MeasurementQueueOptions& options)
+    : options_(options) {}
+
+void MeasurementQueue::AddImu(const ImuSample& sample) {
+  if (!options_.use_imu) return;
+  if (sample.t_ns <= last_imu_out_ns_) {
+    ++counters_.imu_stale;
+    return;
+  }
+  if (!imu_.emplace(sample.t_ns, sample).second) {
+    ++counters_.imu_duplicates;
+    return;
+  }
+  if (newest_imu_ns_ != INT64_MIN && sample.t_ns > newest_imu_ns_) {
+    const int64_t gap = sample.t_ns - newest_imu_ns_;
+    if (gap > options_.imu_gap_ns) {
+      ++counters_.imu_gaps;
+      counters_.longest_imu_gap_ns = std::max(counters_.longest_imu_gap_ns, gap);
+    }
+  }
+  newest_imu_ns_ = std::max(newest_imu_ns_, sample.t_ns);
+}
+
+void MeasurementQueue::AddScan(LidarScan scan) {
+  if (scan.t_ns <= last_scan_out_ns_) {
+    ++counters_.scan_stale;
+    return;
+  }
+  const int64_t t = scan.t_ns;
+  if (!scans_.emplace(t, std::move(scan)).second) ++counters_.scan_duplicates;
+}
+
+std::vector<ImuSample> MeasurementQueue::PopImuUntil(int64_t t_ns) {
+  std::vector<ImuSample> out;
+  while (!imu_.empty() && imu_.begin()->first <= t_ns) {
+    out.push_back(imu_.begin()->second);
+    last_imu_out_ns_ = imu_.begin()->first;
+    imu_.erase(imu_.begin());
+  }
+  return out;
+}
+
+bool MeasurementQueue::Pop(MeasurementGroup* group, bool flush) {
+  if (scans_.empty()) return false;
+  const LidarScan& next = scans_.begin()->second;
+  if (options_.use_imu) {
+    const bool covered = !imu_.empty() && imu_.rbegin()->first >= next.end_t_ns;
+    if (!covered && !flush) return false;
+  }
+  group->scan = std::move(scans_.begin()->second);
+  scans_.erase(scans_.begin());
+  last_scan_out_ns_ = group->scan.t_ns;
+  group->imu.clear();
+  // Every sample up to the first one at or after the scan end.
+  while (!imu_.empty()) {
+    const bool last = imu_.begin()->first >= group->scan.end_t_ns;
+    group->imu.push_back(imu_.begin()->second);
+    last_imu_out_ns_ = imu_.begin()->first;
+    imu_.erase(imu_.begin());
+    if (last) break;
+  }
+  return true;
+}
+
+}  // namespace hylo::estimation

@@ -1,0 +1,211 @@
+#include "hylo/estimation/odometry_pipeline.h"
+
+#include <time.h>
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "hylo/common/check.h"
+#include "hylo/common/time.h"
+#include "hylo/estimation/ieskf.h"
+#include "hylo/estimation/undistortion.h"
+#include "hylo/registration/voxel_filter.h"
+
+namespace hylo::estimation {
+namespace {
+
+MeasurementQueueOptions QueueOptions(const OdometryPipelineOptions& o) {
+  MeasurementQueueOptions q = o.queue;
+  q.use_imu = o.estimator.use_imu;
+  return q;
+}
+
+// The scan's points kept by uniform sampling of their raw positions (times and rings kept).
+LidarScan DownsampleScan(const LidarScan& scan, double voxel_m) {
+  LidarScan kept;
+  kept.t_ns = scan.t_ns;
+  kept.end_t_ns = scan.end_t_ns;
+  kept.frame_id = scan.frame_id;
+  const registration::PointCloud positions = PointsOf(scan);
+  for (std::size_t i : registration::UniformSampleIndices(positions, static_cast<float>(voxel_m))) {
+    kept.points.push_back(scan.points[i]);
+  }
+  return kept;
+}
+
+double CpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+double MsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+template <class S>
+bool SectionValid(const S& section, const char* name, std::string* why) {
+  std::string inner;
+  if (section.IsValid(&inner)) return true;
+  if (why != nullptr) *why = std::string(name) + "." + inner;
+  return false;
+}
+
+}  // namespace
+
+bool PreprocessOptions::IsValid(std::string* why) const {
+  std::ostringstream os;
+  if (!(min_range_m >= 0.0) || !std::isfinite(min_range_m)) {
+    os << "min_range_m = " << min_range_m << ": must be finite and >= 0";
+  } else if (!(max_range_m > min_range_m) || !std::isfinite(max_range_m)) {
+    os << "max_range_m = " << max_range_m << ": must be finite and > min_range_m";
+  } else if (!(max_point_offset_s > 0.0) || !std::isfinite(max_point_offset_s)) {
+    os << "max_point_offset_s = " << max_point_offset_s << ": must be finite and > 0";
+  } else if (!(scan_voxel_m >= 0.0) || !std::isfinite(scan_voxel_m)) {
+    os << "scan_voxel_m = " << scan_voxel_m << ": must be finite and >= 0";
+  } else if (min_points < 1) {
+    os << "min_points = " << min_points << ": must be >= 1";
+  } else {
+    return true;
+  }
+  if (why != nullptr) *why = os.str();
+  return false;
+}
+
+bool OdometryPipelineOptions::IsValid(std::string* why) const {
+  if (!(gravity_mps2 > 9.0 && gravity_mps2 < 10.5)) {
+    if (why != nullptr) {
+      *why = "gravity_mps2 = " + std::to_string(gravity_mps2) + ": must be in (9, 10.5)";
+    }
+    return false;
+  }
+  return SectionValid(estimator, "estimator", why) && SectionValid(init, "init", why) &&
+         SectionValid(queue, "queue", why) && SectionValid(preprocess, "preprocess", why) &&
+         SectionValid(planes, "planes", why) && SectionValid(map, "map", why);
+}
+
+OdometryPipeline::OdometryPipeline(const OdometryPipelineOptions& options)
+    : options_(options),
+      queue_(QueueOptions(options)),
+      initializer_(options.init, options.gravity_mps2),
+      estimator_(Estimator::Create(options.estimator)),
+      map_(options.map),
+      matcher_(map_, options.planes) {
+  std::string why;
+  if (!options_.IsValid(&why)) throw InternalError("invalid options: " + why);
+}
+
+PipelineCounters OdometryPipeline::counters() const {
+  PipelineCounters c = counters_;
+  c.queue = queue_.counters();
+  return c;
+}
+
+void OdometryPipeline::Initialize(const MeasurementGroup& group) {
+  const StateCovariance P0 = Ieskf::InitialCovariance(options_.estimator.ieskf);
+  if (!options_.estimator.use_imu) {
+    NavState x;
+    x.t_ns = group.scan.t_ns;  // the first scan then registers at its own end time
+    x.gravity_map = Eigen::Vector3d(0.0, 0.0, -options_.gravity_mps2);
+    x.T_imu_lidar = options_.T_imu_lidar;
+    estimator_->Initialize(x, P0);
+    status_ = Status::kRunning;
+    return;
+  }
+  std::size_t used = 0;
+  for (const ImuSample& s : group.imu) {
+    ++used;
+    if (initializer_.Add(s) != ImuInitializer::Status::kCollecting) break;
+  }
+  if (initializer_.status() == ImuInitializer::Status::kFailed) {
+    status_ = Status::kFailed;
+    message_ = initializer_.message();
+    return;
+  }
+  if (initializer_.status() != ImuInitializer::Status::kDone) return;
+  NavState x = initializer_.state();
+  x.T_imu_lidar = options_.T_imu_lidar;
+  estimator_->Initialize(x, P0);
+  for (std::size_t i = used - 1; i < group.imu.size(); ++i) estimator_->AddImu(group.imu[i]);
+  status_ = Status::kRunning;
+}
+
+void OdometryPipeline::Process(std::vector<ScanResult>* results, bool flush) {
+  MeasurementGroup group;
+  while (status_ != Status::kFailed && queue_.Pop(&group, flush)) {
+    if (status_ == Status::kInitializing) {
+      Initialize(group);
+      // With an IMU the scan that completed the initialisation started before it: dropped.
+      if (options_.estimator.use_imu || status_ != Status::kRunning) {
+        ++counters_.scans_before_init;
+        continue;
+      }
+    }
+    ScanResult result;
+    if (ProcessScan(&group, &result)) results->push_back(std::move(result));
+  }
+}
+
+bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) {
+  const auto start = std::chrono::steady_clock::now();
+  const double cpu_start_ms = CpuMs();
+  std::vector<int64_t> knots;
+  for (const ImuSample& s : group->imu) {
+    estimator_->AddImu(s);
+    knots.push_back(s.t_ns);
+  }
+  LidarScan& scan = group->scan;
+  const PreprocessOptions& pre = options_.preprocess;
+  const ScanSanitizeReport report = SanitizeScan(&scan, static_cast<float>(pre.min_range_m),
+                                                 static_cast<float>(pre.max_range_m),
+                                                 SecondsToNanos(pre.max_point_offset_s));
+  counters_.points_dropped_sanitize += report.dropped_non_finite + report.dropped_out_of_range +
+                                       report.dropped_bad_time;
+  if (static_cast<int>(scan.points.size()) < pre.min_points) {
+    ++counters_.scans_too_small;
+    return false;
+  }
+  result->raw_points = scan.points.size();
+  // Downsample first, then undistort only the kept points: the voxel (0.5 m) is much larger
+  // than the motion within one sweep, and undistortion is the per-point cost.
+  LidarScan kept = DownsampleScan(scan, pre.scan_voxel_m);
+  DeskewedScan ds;
+  ds.t_ns = scan.end_t_ns;
+  ds.points_lidar =
+      options_.estimator.use_imu && pre.deskew ? Undistort(kept, *estimator_, knots)
+                                               : PointsOf(kept);
+  result->downsampled_points = ds.points_lidar.size();
+  result->deskew_ms = MsSince(start);
+
+  const auto update_start = std::chrono::steady_clock::now();
+  result->update = estimator_->Update(ds, matcher_);
+  result->update_ms = MsSince(update_start);
+  ++counters_.scans_processed;
+  if (!result->update.applied) ++counters_.scans_not_applied;
+  if (result->update.degenerate) ++counters_.scans_degenerate;
+
+  const auto map_start = std::chrono::steady_clock::now();
+  const NavState& x = estimator_->state();
+  if (options_.update_map && (map_.Size() == 0 || result->update.applied)) {
+    const lie::SE3d T_map_lidar = x.T_map_lidar();
+    registration::PointCloud points_map;
+    points_map.reserve(ds.points_lidar.size());
+    for (const Eigen::Vector3f& p : ds.points_lidar) {
+      points_map.push_back((T_map_lidar * p.cast<double>()).cast<float>());
+    }
+    map_.AddScan(points_map, T_map_lidar.translation().cast<float>());
+    result->map_updated = true;
+  }
+  result->map_ms = MsSince(map_start);
+  result->map_points = map_.Size();
+  result->t_ns = x.t_ns;
+  result->state = x;
+  result->pose_covariance = estimator_->PoseCovariance();
+  result->total_ms = MsSince(start);
+  result->cpu_ms = CpuMs() - cpu_start_ms;
+  return true;
+}
+
+}  // namespace hylo::estimation

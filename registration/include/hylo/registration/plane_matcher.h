@@ -1,0 +1,59 @@
+#pragma once
+// Point-to-plane data association shared by every estimator back-end (FAST-LIO2, Sec. IV-C):
+// a scan point placed in the map with the current estimate gets its k nearest map points, a
+// least-squares plane is fitted to them, and the plane is kept only if every neighbour lies
+// within a threshold of it. The residual is the signed distance of the point to that plane.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "hylo/registration/neighbor_search.h"
+
+namespace hylo::registration {
+
+struct PlaneMatcherOptions {
+  int num_neighbors = 5;                 ///< k nearest map points per plane, >= 3
+  double max_neighbor_distance_m = 2.0;  ///< farther map points are not neighbours, m (> 0)
+  double planarity_threshold_m = 0.1;    ///< every neighbour within this of the plane, m (> 0)
+  /// Outlier gate on the residual, scaled by range as in FAST-LIO2: a match is kept when
+  /// |r| < range_gate_factor · sqrt(range of the point from the sensor, m), m^0.5 (> 0).
+  double range_gate_factor = 0.11;
+
+  bool IsValid(std::string* why) const;
+};
+
+/// The plane nᵀx + offset = 0 with |n| = 1, in map coordinates.
+struct Plane {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  double offset = 0.0;  ///< m
+
+  /// Signed point-to-plane distance, m.
+  double Distance(const Eigen::Vector3d& point) const { return normal.dot(point) + offset; }
+};
+
+/// Least-squares plane through `points` (smallest eigenvector of their covariance). False when
+/// fewer than 3 points or when a point lies farther than `planarity_threshold_m` from it.
+bool FitPlane(const std::vector<Neighbor>& points, double planarity_threshold_m, Plane* plane);
+
+class PlaneMatcher {
+ public:
+  /// Keeps a reference to `map`: it must outlive the matcher.
+  PlaneMatcher(const NeighborSearch& map, const PlaneMatcherOptions& options);
+
+  /// The plane for a point already placed in the map; false when there are too few
+  /// neighbours within range or they are not planar. Thread-safe if the map's queries are.
+  bool Match(const Eigen::Vector3d& point_map, Plane* plane) const;
+
+  /// The range-scaled residual gate (see PlaneMatcherOptions::range_gate_factor).
+  bool PassesGate(double residual_m, double range_m) const;
+
+  const NeighborSearch& map() const { return map_; }
+  const PlaneMatcherOptions& options() const { return options_; }
+
+ private:
+  const NeighborSearch& map_;
+  PlaneMatcherOptions options_;
+};
+
+}  // namespace hylo::registration

@@ -1,0 +1,78 @@
+#include "hylo/registration/plane_matcher.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <sstream>
+
+#include "hylo/common/check.h"
+
+namespace hylo::registration {
+
+bool PlaneMatcherOptions::IsValid(std::string* why) const {
+  std::ostringstream os;
+  if (num_neighbors < 3) {
+    os << "num_neighbors = " << num_neighbors << ": must be >= 3 (a plane needs 3 points)";
+  } else if (!(max_neighbor_distance_m > 0.0) || !std::isfinite(max_neighbor_distance_m)) {
+    os << "max_neighbor_distance_m = " << max_neighbor_distance_m << ": must be finite and > 0";
+  } else if (!(planarity_threshold_m > 0.0) || !std::isfinite(planarity_threshold_m)) {
+    os << "planarity_threshold_m = " << planarity_threshold_m << ": must be finite and > 0";
+  } else if (!(range_gate_factor > 0.0) || !std::isfinite(range_gate_factor)) {
+    os << "range_gate_factor = " << range_gate_factor << ": must be finite and > 0";
+  } else {
+    return true;
+  }
+  if (why != nullptr) *why = os.str();
+  return false;
+}
+
+bool FitPlane(const std::vector<Neighbor>& points, double planarity_threshold_m, Plane* plane) {
+  if (points.size() < 3) return false;
+  // Centre on the first point before accumulating so that large map coordinates do not
+  // cancel in the covariance.
+  const Eigen::Vector3d ref = points.front().point.cast<double>();
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+  for (const Neighbor& n : points) {
+    const Eigen::Vector3d q = n.point.cast<double>() - ref;
+    sum += q;
+    outer += q * q.transpose();
+  }
+  const double count = static_cast<double>(points.size());
+  const Eigen::Vector3d mean = sum / count;
+  const Eigen::Matrix3d cov = outer / count - mean * mean.transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(cov);
+  const Eigen::Vector3d normal = eig.eigenvectors().col(0).normalized();
+  // A line (two small eigenvalues) has no defined normal.
+  if (!(eig.eigenvalues()(1) > 1e-8) || !normal.allFinite()) return false;
+  const Eigen::Vector3d centroid = ref + mean;
+  const double offset = -normal.dot(centroid);
+  for (const Neighbor& n : points) {
+    if (std::abs(normal.dot(n.point.cast<double>()) + offset) > planarity_threshold_m) {
+      return false;
+    }
+  }
+  plane->normal = normal;
+  plane->offset = offset;
+  return true;
+}
+
+PlaneMatcher::PlaneMatcher(const NeighborSearch& map, const PlaneMatcherOptions& options)
+    : map_(map), options_(options) {
+  std::string why;
+  if (!options_.IsValid(&why)) throw InternalError("invalid options: " + why);
+}
+
+bool PlaneMatcher::Match(const Eigen::Vector3d& point_map, Plane* plane) const {
+  thread_local std::vector<Neighbor> neighbors;
+  map_.KNearest(point_map.cast<float>(), options_.num_neighbors,
+                static_cast<float>(options_.max_neighbor_distance_m), &neighbors);
+  if (static_cast<int>(neighbors.size()) < options_.num_neighbors) return false;
+  return FitPlane(neighbors, options_.planarity_threshold_m, plane);
+}
+
+bool PlaneMatcher::PassesGate(double residual_m, double range_m) const {
+  return std::abs(residual_m) < options_.range_gate_factor * std::sqrt(std::max(range_m, 1e-3));
+}
+
+}  // namespace hylo::registration

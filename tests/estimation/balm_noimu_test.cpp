@@ -1,0 +1,80 @@
+// Real scans without IMU (no-IMU mode: constant-velocity model, no deskewing) through the
+// same pipeline, against the reference poses of the BALM benchmark scans (data README).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/io/log_reader.h"
+#include "hylo/io/scan_folder.h"
+#include "test_data.h"
+
+namespace hylo::estimation {
+namespace {
+
+Eigen::Isometry3d ToIsometry(const io::StampedPose& p) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = p.orientation.normalized().toRotationMatrix();
+  T.translation() = p.position;
+  return T;
+}
+
+// Issue 5's target is 2 cm / 0.2 deg RMSE; it is NOT met yet: measured 0.053 m / 1.87 deg
+// (scans 8 and 19, with large hand-held rotations, do not converge; the others drift by
+// 1.5-4 cm). The bounds below guard what works today against regressions; the per-scan
+// figures are printed on every run.
+TEST(BalmScansNoImu, PosesStayNearTheReferenceTargetNotYetMet) {
+  HYLO_REQUIRE_DATA("balm_scans/poses.csv");
+  const std::string dir = hylo::testing::DataPath("balm_scans");
+  OdometryPipelineOptions options;
+  options.estimator.use_imu = false;
+  options.preprocess.scan_voxel_m = 0.3f;
+  options.map.voxel_size_m = 0.3f;
+  // A hand-held sensor sampled at 2 Hz turns up to ~30 deg between scans (poses.csv).
+  options.estimator.ieskf.no_imu_yaw_search_deg = 60.0;
+  options.estimator.ieskf.max_iterations = 10;
+  OdometryPipeline pipeline(options);
+  io::LogReadOptions read;
+  read.imu_topic.clear();
+  auto log = io::OpenLog(dir, read);
+  io::LogMessage message;
+  std::vector<ScanResult> results;
+  while (log->Next(&message)) {
+    if (message.kind != io::LogMessage::Kind::kScan) continue;
+    pipeline.AddScan(std::move(message.scan));
+    pipeline.Process(&results);
+  }
+  pipeline.Process(&results, true);
+  const std::vector<io::StampedPose> reference = io::ReadScanFolderPoses(dir);
+  ASSERT_GE(results.size(), 18u);
+  std::size_t compared = 0;
+  double sum_sq_m = 0.0, sum_sq_deg = 0.0;
+  Eigen::Isometry3d T_ref_est = Eigen::Isometry3d::Identity();
+  for (const ScanResult& r : results) {
+    const io::StampedPose* ref = nullptr;
+    for (const io::StampedPose& p : reference) {
+      if (p.t_ns == r.t_ns) ref = &p;
+    }
+    ASSERT_NE(ref, nullptr) << "no reference pose at " << r.t_ns;
+    const Eigen::Isometry3d est(r.state.T_map_lidar().Matrix());
+    if (compared == 0) T_ref_est = ToIsometry(*ref) * est.inverse();  // align the first pose
+    const Eigen::Isometry3d aligned = T_ref_est * est;
+    const Eigen::Isometry3d truth = ToIsometry(*ref);
+    const double e = (aligned.translation() - truth.translation()).norm();
+    const double a = Eigen::AngleAxisd(aligned.linear().transpose() * truth.linear()).angle();
+    std::printf("  scan %2zu: %.4f m, %.3f deg, %d iterations, %zu matches%s\n", compared, e,
+                a * 180.0 / M_PI, r.update.iterations, r.update.num_matches,
+                r.update.message.empty() ? "" : (", " + r.update.message).c_str());
+    sum_sq_m += e * e;
+    sum_sq_deg += std::pow(a * 180.0 / M_PI, 2);
+    ++compared;
+  }
+  const double rmse_m = std::sqrt(sum_sq_m / compared);
+  const double rmse_deg = std::sqrt(sum_sq_deg / compared);
+  std::printf("balm_scans, %zu scans: RMSE %.4f m, %.4f deg\n", compared, rmse_m, rmse_deg);
+  EXPECT_LE(rmse_m, 0.08);
+  EXPECT_LE(rmse_deg, 2.5);
+}
+
+}  // namespace
+}  // namespace hylo::estimation

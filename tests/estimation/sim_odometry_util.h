@@ -1,0 +1,87 @@
+#pragma once
+// Runs the odometry pipeline on a simulated session held in memory and scores it against
+// the simulator's ground truth. Shared by the integration test and the odometry benchmark.
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/estimation/trajectory_metrics.h"
+#include "hylo/sim/simulator.h"
+
+namespace hylo::testing {
+
+/// Pipeline settings matching the simulator's sensors (extrinsic, IMU noise, gravity).
+inline estimation::OdometryPipelineOptions PipelineOptionsFor(const sim::SimulationOptions& s) {
+  estimation::OdometryPipelineOptions o;
+  o.gravity_mps2 = s.imu.gravity_mps2;
+  o.estimator.imu_noise.accel_noise_density = s.imu.accel_noise_density;
+  o.estimator.imu_noise.gyro_noise_density = s.imu.gyro_noise_density;
+  o.estimator.imu_noise.accel_bias_random_walk = s.imu.accel_bias_random_walk;
+  o.estimator.imu_noise.gyro_bias_random_walk = s.imu.gyro_bias_random_walk;
+  const Eigen::Isometry3d& T = s.lidar.T_imu_lidar;
+  o.T_imu_lidar = estimation::lie::SE3d(
+      estimation::lie::SO3d::FromMatrix(T.linear()), T.translation());
+  o.preprocess.min_range_m = static_cast<float>(s.lidar.min_range_m);
+  o.preprocess.max_range_m = static_cast<float>(s.lidar.max_range_m);
+  return o;
+}
+
+struct SimRun {
+  std::vector<estimation::ScanResult> results;
+  std::vector<estimation::TimedPose> estimate;   ///< T_map_imu per scan end
+  std::vector<estimation::TimedPose> reference;  ///< true T_map_imu at the IMU rate
+  estimation::AteResult ate;
+  estimation::PipelineCounters counters;
+  std::size_t map_points = 0;
+  bool failed = false;
+  std::string message;
+};
+
+/// Streams a session from the simulator straight into a pipeline (nothing but the truth is
+/// kept in memory), in the simulator's arrival order, and scores the trajectory.
+class PipelineSink : public sim::SessionSink {
+ public:
+  explicit PipelineSink(const estimation::OdometryPipelineOptions& options)
+      : pipeline_(options) {}
+  void OnImu(const estimation::ImuSample& s) override { pipeline_.AddImu(s); }
+  void OnScan(const estimation::LidarScan& s) override {
+    pipeline_.AddScan(s);
+    pipeline_.Process(&run_.results);
+  }
+  void OnTruth(const sim::TruthSample& t) override {
+    run_.reference.push_back({t.t_ns, t.T_map_imu});
+  }
+  SimRun Finish() {
+    pipeline_.Process(&run_.results, true);
+    run_.failed = pipeline_.status() == estimation::OdometryPipeline::Status::kFailed;
+    run_.message = pipeline_.message();
+    run_.counters = pipeline_.counters();
+    run_.map_points = pipeline_.map().Size();
+    for (const estimation::ScanResult& r : run_.results) {
+      run_.estimate.push_back({r.t_ns, Eigen::Isometry3d(r.state.T_map_imu().Matrix())});
+    }
+    run_.ate = estimation::ComputeAte(run_.estimate, run_.reference);
+    return std::move(run_);
+  }
+  const estimation::OdometryPipeline& pipeline() const { return pipeline_; }
+
+ private:
+  estimation::OdometryPipeline pipeline_;
+  SimRun run_;
+};
+
+/// Simulates session `session` of the site built from `sim_options` and runs the pipeline.
+inline SimRun RunSimulatedSession(const sim::SimulationOptions& sim_options,
+                                  sim::SessionId session,
+                                  const estimation::OdometryPipelineOptions& options,
+                                  sim::SessionSummary* summary = nullptr) {
+  const sim::Site site = sim::BuildSite(sim_options.seed, sim_options.terrain);
+  const sim::SessionSimulator simulator(sim_options, site, session);
+  PipelineSink sink(options);
+  const sim::SessionSummary s = simulator.Run(&sink);
+  if (summary != nullptr) *summary = s;
+  return sink.Finish();
+}
+
+}  // namespace hylo::testing

@@ -1,0 +1,98 @@
+// Plane fitting and matching against the exact (brute-force) neighbour search.
+#include "hylo/registration/plane_matcher.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "hylo/registration/brute_force_search.h"
+
+namespace hylo::registration {
+namespace {
+
+// Points on the plane z = 0.2 x − 0.1 y + 3 with Gaussian noise along z.
+PointCloud NoisyPlane(int n, double noise, std::mt19937* rng) {
+  std::uniform_real_distribution<float> u(-10.f, 10.f);
+  std::normal_distribution<float> g(0.f, static_cast<float>(noise));
+  PointCloud points;
+  for (int i = 0; i < n; ++i) {
+    const float x = u(*rng), y = u(*rng);
+    points.emplace_back(x, y, 0.2f * x - 0.1f * y + 3.f + g(*rng));
+  }
+  return points;
+}
+
+TEST(FitPlane, RecoversAKnownPlane) {
+  std::mt19937 rng(7);
+  std::vector<Neighbor> nb;
+  for (const auto& p : NoisyPlane(50, 0.0, &rng)) nb.push_back({p, 0.f});
+  Plane plane;
+  ASSERT_TRUE(FitPlane(nb, 0.01f, &plane));
+  const Eigen::Vector3d expected = Eigen::Vector3d(0.2, -0.1, -1.0).normalized();
+  EXPECT_NEAR(std::abs(plane.normal.dot(expected)), 1.0, 1e-6);
+  for (const Neighbor& n : nb) EXPECT_NEAR(plane.Distance(n.point.cast<double>()), 0.0, 1e-4);
+}
+
+TEST(FitPlane, RejectsNonPlanarCollinearAndTooFewPoints) {
+  Plane plane;
+  std::vector<Neighbor> corner = {{{0, 0, 0}, 0}, {{1, 0, 0}, 0}, {{0, 1, 0}, 0},
+                                  {{0, 0, 1}, 0}, {{1, 1, 0}, 0}};
+  EXPECT_FALSE(FitPlane(corner, 0.1f, &plane));
+  std::vector<Neighbor> line = {{{0, 0, 0}, 0}, {{1, 1, 1}, 0}, {{2, 2, 2}, 0}, {{3, 3, 3}, 0}};
+  EXPECT_FALSE(FitPlane(line, 0.1f, &plane));
+  std::vector<Neighbor> two = {{{0, 0, 0}, 0}, {{1, 0, 0}, 0}};
+  EXPECT_FALSE(FitPlane(two, 0.1f, &plane));
+}
+
+TEST(PlaneMatcher, MatchesNoisyPlaneAndAgreesWithBruteForceFit) {
+  std::mt19937 rng(11);
+  const BruteForceSearch map(NoisyPlane(4000, 0.01, &rng));
+  const PlaneMatcher matcher(map, PlaneMatcherOptions{});
+  std::uniform_real_distribution<double> u(-8.0, 8.0);
+  int matched = 0;
+  for (int i = 0; i < 200; ++i) {
+    const double x = u(rng), y = u(rng);
+    const Eigen::Vector3d q(x, y, 0.2 * x - 0.1 * y + 3.0 + 0.3);  // 0.3 m above the surface
+    Plane plane;
+    if (!matcher.Match(q, &plane)) continue;
+    ++matched;
+    std::vector<Neighbor> nb;
+    map.KNearest(q.cast<float>(), 5, 2.f, &nb);
+    Plane reference;
+    ASSERT_TRUE(FitPlane(nb, 0.1f, &reference));
+    EXPECT_NEAR(std::abs(plane.normal.dot(reference.normal)), 1.0, 1e-9);
+    // The signed distance is the offset along the normal: |r| ≈ 0.3 cos(tilt).
+    EXPECT_NEAR(std::abs(plane.Distance(q)), 0.3 / std::sqrt(1.0 + 0.04 + 0.01), 0.03);
+  }
+  EXPECT_GT(matched, 190);
+}
+
+TEST(PlaneMatcher, RejectsFarAndNonPlanarNeighbourhoods) {
+  PointCloud corner;
+  for (int i = 0; i <= 10; ++i) {
+    for (int j = 0; j <= 10; ++j) {
+      corner.emplace_back(0.1f * i, 0.1f * j, 0.f);  // floor
+      corner.emplace_back(0.f, 0.1f * i, 0.1f * j);  // wall
+    }
+  }
+  const BruteForceSearch map(corner);
+  PlaneMatcherOptions options;
+  options.planarity_threshold_m = 0.02f;
+  const PlaneMatcher matcher(map, options);
+  Plane plane;
+  EXPECT_FALSE(matcher.Match(Eigen::Vector3d(0.02, 0.5, 0.02), &plane));  // at the edge
+  EXPECT_TRUE(matcher.Match(Eigen::Vector3d(0.6, 0.5, 0.01), &plane));    // on the floor
+  EXPECT_NEAR(std::abs(plane.normal.z()), 1.0, 1e-6);
+  EXPECT_FALSE(matcher.Match(Eigen::Vector3d(20.0, 20.0, 0.0), &plane));  // out of range
+}
+
+TEST(PlaneMatcherOptions, NamesTheBrokenField) {
+  PlaneMatcherOptions o;
+  o.num_neighbors = 2;
+  std::string why;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("num_neighbors"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hylo::registration
