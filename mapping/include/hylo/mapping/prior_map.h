@@ -1,0 +1,46 @@
+#pragma once
+// The prior map of localization (issue 6): positions as read from a PCD/PLY file (double, so
+// UTM coordinates keep their millimetres; the caller reads them with hylo/io/cloud_io.h),
+// shifted by a local origin kept in double so everything downstream computes near zero in
+// float, and downsampled to the map resolution. The localizer works in the local frame
+// ("map" = world - origin); poses and points go back to the world with the origin.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include "hylo/registration/point_types.h"
+
+namespace hylo::mapping {
+
+struct PriorMapOptions {
+  double resolution_m = 0.1;            ///< uniform-sampling voxel of the map, m (0 = keep all),
+                                        ///< >= 0
+  double origin_granularity_m = 100.0;  ///< the origin is the first finite point rounded to
+                                        ///< this, m (see ChooseOrigin), >= 0
+  bool IsValid(std::string* why) const;
+};
+
+struct PriorMap {
+  registration::PointCloud points_local;  ///< map points - origin_world, downsampled, m
+  Eigen::Vector3d origin_world = Eigen::Vector3d::Zero();  ///< world position of local zero, m
+  std::size_t num_input = 0;       ///< points given
+  std::size_t num_non_finite = 0;  ///< NaN/inf points dropped
+  std::size_t num_kept = 0;        ///< points after downsampling (= points_local.size())
+};
+
+/// Builds the prior map from world positions. Throws std::invalid_argument naming
+/// `source_name` (e.g. the file) and the reason when there is no point or no finite point,
+/// or when `options` is not valid.
+PriorMap BuildPriorMap(const std::vector<Eigen::Vector3d>& points_world,
+                       const PriorMapOptions& options,
+                       const std::string& source_name = "prior map");
+
+/// A world pose (e.g. a guess typed in UTM) in the local frame of `origin_world`, and back.
+Eigen::Isometry3d PoseToLocal(const Eigen::Isometry3d& T_world_body,
+                              const Eigen::Vector3d& origin_world);
+Eigen::Isometry3d PoseToWorld(const Eigen::Isometry3d& T_local_body,
+                              const Eigen::Vector3d& origin_world);
+
+}  // namespace hylo::mapping

@@ -1,0 +1,239 @@
+// ICP initializer on synthetic scenes (ground, walls, boxes): acceptance from a near guess,
+// recovery by the search from a far one, and every rejection path: empty / NaN input, empty
+// map, a flat plane (yaw and x/y unobservable), a partial overlap whose fitness alone would
+// pass, invalid options.
+#include "hylo/registration/icp_initializer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include "hylo/common/check.h"
+#include "hylo/mapping/ikd_tree.h"
+#include "hylo/registration/brute_force_search.h"
+
+namespace hylo::registration {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+Eigen::Isometry3d Pose(double x, double y, double z, double yaw_deg) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(yaw_deg * kDeg, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(x, y, z);
+  return T;
+}
+
+void AddRectangle(const Eigen::Vector3f& corner, const Eigen::Vector3f& u,
+                  const Eigen::Vector3f& v, float spacing_m, std::mt19937* rng,
+                  PointCloud* cloud) {
+  // Random samples at about one per spacing^2 (a regular grid would alias).
+  const int n = static_cast<int>(u.norm() * v.norm() / (spacing_m * spacing_m));
+  std::uniform_real_distribution<float> unit(0.f, 1.f);
+  for (int i = 0; i < n; ++i) cloud->push_back(corner + unit(*rng) * u + unit(*rng) * v);
+}
+
+void AddBox(const Eigen::Vector3f& corner, const Eigen::Vector3f& size, float spacing_m,
+            std::mt19937* rng, PointCloud* cloud) {
+  const Eigen::Vector3f x(size.x(), 0, 0), y(0, size.y(), 0), z(0, 0, size.z());
+  AddRectangle(corner, x, z, spacing_m, rng, cloud);
+  AddRectangle(corner + y, x, z, spacing_m, rng, cloud);
+  AddRectangle(corner, y, z, spacing_m, rng, cloud);
+  AddRectangle(corner + x, y, z, spacing_m, rng, cloud);
+  AddRectangle(corner + z, x, y, spacing_m, rng, cloud);
+}
+
+// A 30 m x 30 m yard: ground, two walls, five boxes of different sizes (no symmetry).
+PointCloud Yard(float spacing_m, uint32_t seed) {
+  std::mt19937 rng(seed);
+  PointCloud cloud;
+  AddRectangle({-15, -15, 0}, {30, 0, 0}, {0, 30, 0}, spacing_m, &rng, &cloud);
+  AddRectangle({-15, 15, 0}, {30, 0, 0}, {0, 0, 3}, spacing_m, &rng, &cloud);
+  AddRectangle({-15, -15, 0}, {0, 30, 0}, {0, 0, 2}, spacing_m, &rng, &cloud);
+  AddBox({3, 2, 0}, {2, 1, 2.5f}, spacing_m, &rng, &cloud);
+  AddBox({-6, -4, 0}, {1, 3, 1.5f}, spacing_m, &rng, &cloud);
+  AddBox({5, -7, 0}, {3, 1.5f, 1}, spacing_m, &rng, &cloud);
+  AddBox({-9, 6, 0}, {1.5f, 1.5f, 4}, spacing_m, &rng, &cloud);
+  AddBox({9, 9, 0}, {1, 4, 2}, spacing_m, &rng, &cloud);
+  return cloud;
+}
+
+// The map as production searches it (an exact brute-force search would take minutes here).
+std::unique_ptr<mapping::IkdTree> Tree(const PointCloud& points) {
+  auto tree = std::make_unique<mapping::IkdTree>(mapping::IkdTree::Options());
+  tree->Build(points);
+  return tree;
+}
+
+// `world` seen from `T_world_body`: the points in the body frame, with Gaussian noise.
+PointCloud InBody(const PointCloud& world, const Eigen::Isometry3d& T_world_body,
+                  double noise_m, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, noise_m);
+  const Eigen::Isometry3d T_body_world = T_world_body.inverse();
+  PointCloud body;
+  for (const Eigen::Vector3f& p : world) {
+    const Eigen::Vector3d n(noise(rng), noise(rng), noise(rng));
+    body.push_back((T_body_world * (p.cast<double>() + n)).cast<float>());
+  }
+  return body;
+}
+
+double TranslationError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return (a.translation() - b.translation()).norm();
+}
+double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle() / kDeg;
+}
+
+class IcpInitializerTest : public ::testing::Test {
+ protected:
+  IcpInitializerTest()
+      : tree_(Tree(Yard(0.1f, 1))), map_(*tree_), truth_(Pose(1.0, -2.0, 0.6, 35.0)),
+        scan_(InBody(Yard(0.4f, 2), truth_, 0.01, 3)) {}
+  std::unique_ptr<mapping::IkdTree> tree_;
+  const NeighborSearch& map_;
+  Eigen::Isometry3d truth_;
+  PointCloud scan_;
+};
+
+TEST_F(IcpInitializerTest, NearGuessIsAcceptedWithoutSearch) {
+  const IcpInitializer initializer;
+  const IcpInitializerResult r =
+      initializer.Initialize(scan_, map_, truth_ * Pose(0.3, -0.2, 0.1, 4.0));
+  ASSERT_TRUE(r.accepted) << r.message;
+  EXPECT_EQ(r.hypotheses_tried, 1);
+  EXPECT_EQ(r.accepted_hypothesis, 0);
+  EXPECT_LT(TranslationError(r.T_map_imu, truth_), 0.02);
+  EXPECT_LT(RotationErrorDeg(r.T_map_imu, truth_), 0.2);
+  EXPECT_LT(r.fitness_score_m2, 0.01);
+  EXPECT_GT(r.inlier_ratio, 0.95);
+  EXPECT_GT(r.constraint, initializer.options().min_constraint);
+}
+
+TEST_F(IcpInitializerTest, FarGuessIsRecoveredByTheSearch) {
+  IcpInitializerOptions options;
+  options.search_enabled = false;
+  const Eigen::Isometry3d guess = Pose(-1.8, 1.5, 0.0, -28.0) * truth_;
+  const IcpInitializerResult direct = IcpInitializer(options).Initialize(scan_, map_, guess);
+  const IcpInitializerResult r = IcpInitializer().Initialize(scan_, map_, guess);
+  ASSERT_TRUE(r.accepted) << r.message;
+  EXPECT_LT(TranslationError(r.T_map_imu, truth_), 0.02);
+  EXPECT_LT(RotationErrorDeg(r.T_map_imu, truth_), 0.2);
+  if (!direct.accepted) {  // the case this test is about: the guess alone fails
+    EXPECT_GT(r.hypotheses_tried, 1);
+    EXPECT_GE(r.accepted_hypothesis, 0);
+  }
+  EXPECT_EQ(r.num_accepted_distinct, 1);
+}
+
+TEST_F(IcpInitializerTest, EmptyAndNanScansAreRejectedWithAMessage) {
+  const IcpInitializer initializer;
+  const Eigen::Isometry3d guess = truth_;
+  const IcpInitializerResult empty = initializer.Initialize({}, map_, guess);
+  EXPECT_FALSE(empty.accepted);
+  EXPECT_NE(empty.message.find("finite scan points"), std::string::npos) << empty.message;
+  EXPECT_TRUE(empty.T_map_imu.isApprox(guess));
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const PointCloud all_nan(500, Eigen::Vector3f(nan, 0.f, nan));
+  const IcpInitializerResult r = initializer.Initialize(all_nan, map_, guess);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_EQ(r.num_source_points, 0u);
+}
+
+TEST_F(IcpInitializerTest, NanPointsAmongGoodOnesAreSkipped) {
+  PointCloud scan = scan_;
+  for (std::size_t i = 0; i < scan.size(); i += 7) scan[i].x() = std::nanf("");
+  const IcpInitializerResult r = IcpInitializer().Initialize(scan, map_, truth_);
+  ASSERT_TRUE(r.accepted) << r.message;
+  EXPECT_LT(TranslationError(r.T_map_imu, truth_), 0.02);
+}
+
+TEST_F(IcpInitializerTest, EmptyMapAndNonFiniteGuessAreRejected) {
+  const IcpInitializer initializer;
+  const BruteForceSearch empty_map({});
+  const IcpInitializerResult no_map = initializer.Initialize(scan_, empty_map, truth_);
+  EXPECT_FALSE(no_map.accepted);
+  EXPECT_NE(no_map.message.find("map is empty"), std::string::npos) << no_map.message;
+  Eigen::Isometry3d bad = truth_;
+  bad.translation().x() = std::nan("");
+  const IcpInitializerResult r = initializer.Initialize(scan_, map_, bad);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_NE(r.message.find("not finite"), std::string::npos) << r.message;
+}
+
+TEST(IcpInitializerDegenerate, FlatPlaneIsReportedNotAccepted) {
+  // Only ground: yaw and x/y are free, so ICP "converges" with a perfect fitness wherever it
+  // starts. The constraint gate must refuse it (and the search then finds only such poses).
+  std::mt19937 rng(5);
+  PointCloud ground;
+  AddRectangle({-20, -20, 0}, {40, 0, 0}, {0, 40, 0}, 0.1f, &rng, &ground);
+  PointCloud patch;
+  AddRectangle({-8, -8, 0}, {16, 0, 0}, {0, 16, 0}, 0.3f, &rng, &patch);
+  const Eigen::Isometry3d truth = Pose(2, 1, 0.6, 20);
+  const PointCloud scan = InBody(patch, truth, 0.005, 6);
+  const IcpInitializerResult r =
+      IcpInitializer().Initialize(scan, *Tree(ground), Pose(2.5, 1, 0.6, 30));
+  EXPECT_FALSE(r.accepted) << r.message;
+  EXPECT_LT(r.best_fitness_score_m2, 0.01);  // the fitness alone would have accepted
+  EXPECT_LT(r.best_constraint, IcpInitializerOptions().min_constraint);
+  EXPECT_NE(r.message.find("constraint"), std::string::npos) << r.message;
+}
+
+TEST_F(IcpInitializerTest, PartialOverlapWithLowFitnessIsRejected) {
+  // Half the scan sees structures the map does not hold (3 m farther than any map surface):
+  // the matched half fits perfectly, so the range-limited fitness is low; the inlier ratio
+  // is not.
+  PointCloud scan = scan_;
+  std::mt19937 rng(9);
+  PointCloud unknown;
+  AddRectangle({-15, -15, 8}, {30, 0, 0}, {0, 30, 0}, 0.2f, &rng, &unknown);
+  for (const Eigen::Vector3f& p : InBody(unknown, truth_, 0.0, 1)) scan.push_back(p);
+  IcpInitializerOptions options;
+  options.search_enabled = false;
+  const IcpInitializerResult r = IcpInitializer(options).Initialize(scan, map_, truth_);
+  EXPECT_FALSE(r.accepted) << r.message;
+  EXPECT_LT(r.best_fitness_score_m2, options.fitness_threshold_m2);
+  EXPECT_LT(r.best_inlier_ratio, options.min_inlier_ratio);
+}
+
+TEST(IcpInitializerOptions, IsValidNamesTheField) {
+  std::string why;
+  EXPECT_TRUE(IcpInitializerOptions().IsValid(&why)) << why;
+  IcpInitializerOptions o;
+  o.min_inlier_ratio = 1.5;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("min_inlier_ratio = 1.5"), std::string::npos) << why;
+  o = IcpInitializerOptions();
+  o.coarse_voxel_m = 0.1;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("coarse_voxel_m"), std::string::npos) << why;
+  o = IcpInitializerOptions();
+  o.fine_icp.max_iterations = 0;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("fine_icp.max_iterations"), std::string::npos) << why;
+  o = IcpInitializerOptions();
+  o.yaw_step_deg = 0;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_THROW(IcpInitializer{o}, InternalError);
+}
+
+TEST(IcpInitializerGravity, GuessLevelsTheMeasuredUpDirection) {
+  // An IMU pitched by 10 deg and rolled by -5 deg measures "up" in its own frame.
+  const Eigen::Matrix3d R_true =
+      (Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()) *
+       Eigen::AngleAxisd(10 * kDeg, Eigen::Vector3d::UnitY()) *
+       Eigen::AngleAxisd(-5 * kDeg, Eigen::Vector3d::UnitX())).toRotationMatrix();
+  const Eigen::Vector3d force_imu = R_true.transpose() * Eigen::Vector3d(0, 0, 9.81);
+  const Eigen::Isometry3d T =
+      GuessFromGravity(Eigen::Vector3d(1, 2, 3), 0.3, force_imu);
+  EXPECT_LT((T.linear() * force_imu.normalized() - Eigen::Vector3d::UnitZ()).norm(), 1e-12);
+  EXPECT_TRUE(T.translation().isApprox(Eigen::Vector3d(1, 2, 3)));
+  EXPECT_THROW(GuessFromGravity(Eigen::Vector3d::Zero(), 0.0, Eigen::Vector3d::Zero()),
+               InternalError);
+}
+
+}  // namespace
+}  // namespace hylo::registration
