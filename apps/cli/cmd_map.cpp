@@ -1,6 +1,7 @@
 // `hylo map --log LOG --config C --out DIR [--json PATH]`: SLAM from scratch with the
 // configured back-end. Writes the trajectory of the IMU frame in the map frame (TUM), the map
-// (PCD), per-scan timing (CSV), the effective configuration and a JSON summary.
+// (PCD; and map_dense.pcd, every registered scan at output.dense_map_voxel_m, the input of
+// offline crafting), per-scan timing (CSV), the effective configuration and a JSON summary.
 
 #include <algorithm>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include "hylo/io/log_reader.h"
 #include "hylo/io/progress.h"
 #include "hylo/io/trajectory_io.h"
+#include "hylo/mapping/ikd_tree.h"
 
 namespace hylo::cli {
 namespace {
@@ -92,6 +94,19 @@ void RunMap(const MapArgs& args) {
   estimation::OdometryPipeline pipeline(config.PipelineOptions());
   auto log = io::OpenLog(args.log, config.LogOptions());
   std::vector<estimation::ScanResult> results;
+  // The dense map (offline crafting's input) keeps one point per voxel, nearest the voxel
+  // centre, through the ikd-tree's downsampling insert: memory grows with the surface, not
+  // with the number of scans.
+  const float dense_voxel_m = static_cast<float>(config.output.dense_map_voxel_m);
+  mapping::IkdTree dense_map{mapping::IkdTree::Options()};
+  std::size_t dense_consumed = 0;
+  auto consume_dense = [&] {
+    for (; dense_consumed < results.size(); ++dense_consumed) {
+      auto& points = results[dense_consumed].registered_points_map;
+      if (dense_voxel_m > 0.f && !points.empty()) dense_map.Insert(points, dense_voxel_m);
+      registration::PointCloud().swap(points);  // results keep only the pose and timing
+    }
+  };
   io::Progress progress("map", 0);
   io::LogMessage message;
   std::size_t scans = 0;
@@ -102,10 +117,12 @@ void RunMap(const MapArgs& args) {
     }
     pipeline.AddScan(std::move(message.scan));
     pipeline.Process(&results);
+    consume_dense();
     progress.Update(++scans);
     if (pipeline.status() == estimation::OdometryPipeline::Status::kFailed) break;
   }
   pipeline.Process(&results, true);
+  consume_dense();
   progress.Finish();
   if (pipeline.status() == estimation::OdometryPipeline::Status::kFailed) {
     throw std::runtime_error(args.log + ": " + pipeline.message());
@@ -125,6 +142,11 @@ void RunMap(const MapArgs& args) {
     map.positions.push_back(p.cast<double>());
   }
   io::WriteCloud(args.out + "/map.pcd", map);
+  if (dense_voxel_m > 0.f) {
+    io::CloudFile dense;
+    for (const Eigen::Vector3f& p : dense_map.Flatten()) dense.positions.push_back(p.cast<double>());
+    io::WriteCloud(args.out + "/map_dense.pcd", dense, io::CloudEncoding::kBinaryCompressed);
+  }
   WriteTiming(args.out + "/timing.csv", results);
   const io::Json summary =
       Summarize(args, config, pipeline, results, progress.ElapsedSeconds());

@@ -81,6 +81,13 @@ bool OdometryPipelineOptions::IsValid(std::string* why) const {
     }
     return false;
   }
+  if (!(registered_scan_voxel_m >= 0.0 && std::isfinite(registered_scan_voxel_m))) {
+    if (why != nullptr) {
+      *why = "registered_scan_voxel_m = " + std::to_string(registered_scan_voxel_m) +
+             ": must be finite and >= 0";
+    }
+    return false;
+  }
   return SectionValid(estimator, "estimator", why) && SectionValid(init, "init", why) &&
          SectionValid(queue, "queue", why) && SectionValid(preprocess, "preprocess", why) &&
          SectionValid(planes, "planes", why) && SectionValid(map, "map", why);
@@ -177,6 +184,13 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
       options_.estimator.use_imu && pre.deskew ? Undistort(kept, *estimator_, knots)
                                                : PointsOf(kept);
   result->downsampled_points = ds.points_lidar.size();
+  // The dense copy is deskewed with the same prediction; it is registered after the update.
+  registration::PointCloud dense_lidar;
+  if (options_.registered_scan_voxel_m > 0.0) {
+    const LidarScan dense = DownsampleScan(scan, options_.registered_scan_voxel_m);
+    dense_lidar = options_.estimator.use_imu && pre.deskew ? Undistort(dense, *estimator_, knots)
+                                                           : PointsOf(dense);
+  }
   result->deskew_ms = MsSince(start);
 
   const auto update_start = std::chrono::steady_clock::now();
@@ -199,6 +213,13 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
     result->map_updated = true;
   }
   result->map_ms = MsSince(map_start);
+  if (result->update.applied) {
+    const lie::SE3d T_map_lidar = x.T_map_lidar();
+    result->registered_points_map.reserve(dense_lidar.size());
+    for (const Eigen::Vector3f& p : dense_lidar) {
+      result->registered_points_map.push_back((T_map_lidar * p.cast<double>()).cast<float>());
+    }
+  }
   result->map_points = map_.Size();
   result->t_ns = x.t_ns;
   result->state = x;

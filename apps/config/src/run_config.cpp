@@ -87,7 +87,16 @@ bool RunConfig::IsValid(std::string* why) const {
          SectionValid(T_imu_lidar, "T_imu_lidar", why) &&
          SectionValid(preprocess, "preprocess", why) && SectionValid(init, "init", why) &&
          SectionValid(ieskf, "ieskf", why) && SectionValid(planes, "planes", why) &&
-         SectionValid(map, "map", why);
+         SectionValid(map, "map", why) && SectionValid(output, "output", why);
+}
+
+bool OutputConfig::IsValid(std::string* why) const {
+  if (!std::isfinite(dense_map_voxel_m) || dense_map_voxel_m < 0.0)
+    return Invalid(why, "dense_map_voxel_m", dense_map_voxel_m, "must be finite and >= 0 (0 = off)");
+  if (dense_map_voxel_m > 0.0 && dense_map_voxel_m < 0.01)
+    return Invalid(why, "dense_map_voxel_m", dense_map_voxel_m,
+                   "must be >= 0.01 m (finer voxels keep every return and exhaust memory)");
+  return true;
 }
 
 estimation::OdometryPipelineOptions RunConfig::PipelineOptions() const {
@@ -107,6 +116,7 @@ estimation::OdometryPipelineOptions RunConfig::PipelineOptions() const {
   o.preprocess.max_range_m = lidar.max_range_m;
   o.planes = planes;
   o.map = map;
+  o.registered_scan_voxel_m = output.dense_map_voxel_m;
   const Eigen::Isometry3d T = T_imu_lidar.ToIsometry();
   o.T_imu_lidar = estimation::lie::SE3d(estimation::lie::SO3d::FromMatrix(T.linear()),
                                         T.translation());

@@ -97,6 +97,11 @@ void VisitFields(V& v, mapping::MapManagerOptions& o) {
 }
 
 template <class V>
+void VisitFields(V& v, OutputConfig& output) {
+  v("dense_map_voxel_m", output.dense_map_voxel_m);
+}
+
+template <class V>
 void VisitFields(V& v, RunConfig& run) {
   v("backend", run.backend);
   v.Section("lidar", run.lidar);
@@ -107,6 +112,7 @@ void VisitFields(V& v, RunConfig& run) {
   v.Section("ieskf", run.ieskf);
   v.Section("planes", run.planes);
   v.Section("map", run.map);
+  v.Section("output", run.output);
 }
 
 }  // namespace hylo::config

@@ -38,6 +38,9 @@ struct OdometryPipelineOptions {
   mapping::MapManagerOptions map;
   lie::SE3d T_imu_lidar;                 ///< extrinsic (the filter may refine it online)
   bool update_map = true;                ///< add registered scans to the map (SLAM)
+  double registered_scan_voxel_m = 0.0;  ///< > 0: each result carries the whole scan, uniformly
+                                         ///< sampled at this voxel (m), deskewed and registered
+                                         ///< in the map frame, for dense map outputs; 0 = off
   bool IsValid(std::string* why) const;
 };
 
@@ -53,6 +56,9 @@ struct ScanResult {
   bool map_updated = false;
   double deskew_ms = 0.0, update_ms = 0.0, map_ms = 0.0, total_ms = 0.0;  ///< wall time
   double cpu_ms = 0.0;  ///< CPU time of this thread for the whole scan (robust to a busy host)
+  /// The scan in the map frame at registered_scan_voxel_m (empty when that option is 0 or the
+  /// update was not applied: an unregistered scan must not smear a dense map).
+  registration::PointCloud registered_points_map;
 };
 
 struct PipelineCounters {

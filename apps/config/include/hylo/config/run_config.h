@@ -51,6 +51,13 @@ struct TransformConfig {
   bool IsValid(std::string* why) const;
 };
 
+/// What a run writes besides its trajectory and summary.
+struct OutputConfig {
+  double dense_map_voxel_m = 0.1;  ///< voxel of map_dense.pcd (every registered scan, uniformly
+                                   ///< sampled), the input of offline map crafting, m; 0 = off
+  bool IsValid(std::string* why) const;
+};
+
 /// Everything a run reads from its configuration file.
 struct RunConfig {
   std::string backend = "ieskf";  ///< estimator back-end: ieskf | sliding_window
@@ -63,6 +70,7 @@ struct RunConfig {
   estimation::IeskfOptions ieskf;                 ///< the IESKF back-end
   registration::PlaneMatcherOptions planes;       ///< point-to-plane association
   mapping::MapManagerOptions map;                 ///< map downsampling and local window
+  OutputConfig output;                            ///< extra outputs of a run
 
   /// Checks every section; *why names the field (with its section), value and constraint.
   bool IsValid(std::string* why) const;
