@@ -52,12 +52,17 @@ SteepCellCheck CheckSteepCells(const GridMap& grid, const std::vector<CellClass>
                                const TruthField& true_slope_deg, double max_slope_deg) {
   const GridGeometry& g = grid.geometry();
   HYLO_CHECK(classes.size() == g.NumCells(), "one class per cell");
+  const std::vector<float>& slope = grid.Layer(layers::kSlope);
   SteepCellCheck check;
   for (std::size_t cell = 0; cell < g.NumCells(); ++cell) {
     if (!HasData(grid, cell, CellSelection::kMeasured)) continue;
     const Eigen::Vector2d xy = g.CentreWorld(g.Col(cell), g.Row(cell));
     const double truth = true_slope_deg(xy.x(), xy.y());
     if (!(truth > max_slope_deg)) continue;
+    if (std::isnan(slope[cell])) {
+      ++check.steep_unknown;
+      continue;
+    }
     ++check.steep_cells;
     if (classes[cell] == CellClass::kLethal) ++check.marked_lethal;
   }

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
 #include "hylo/registration/voxel_filter.h"
 #include "hylo/sim/reference_outputs.h"
 #include "hylo/sim/surface_distance.h"
+#include "hylo/sim/terrain.h"
 
 namespace hylo::site_eval {
 namespace {
@@ -109,6 +111,7 @@ CraftFigures MeasureCrafting(const SiteEvalOptions& options, const AccumulatedMa
 }
 
 SlopeFigures MeasureSlope(const SiteEvalOptions& options, const mapping::TruthField& truth,
+                          const mapping::TruthField& footprint_truth,
                           const std::vector<Eigen::Vector3d>& ground,
                           const std::vector<Eigen::Vector3d>& objects) {
   SlopeFigures f;
@@ -120,6 +123,9 @@ SlopeFigures MeasureSlope(const SiteEvalOptions& options, const mapping::TruthFi
   f.slope = mapping::CompareSlope(map.grid, truth);
   f.steep = mapping::CheckSteepCells(map.grid, map.classes, truth,
                                      options.traversability.cost.max_slope_deg);
+  f.slope_footprint = mapping::CompareSlope(map.grid, footprint_truth);
+  f.steep_footprint = mapping::CheckSteepCells(map.grid, map.classes, footprint_truth,
+                                               options.traversability.cost.max_slope_deg);
   return f;
 }
 
@@ -203,6 +209,31 @@ AccumulatedMap AccumulateSessionA(const sim::SimulationOptions& options, const s
   return map;
 }
 
+mapping::TruthField FootprintSlope(const sim::Site& site, double radius_m) {
+  std::vector<Eigen::Vector2d> offsets;
+  const double step_m = 0.1;
+  const int k = static_cast<int>(std::floor(radius_m / step_m));
+  for (int i = -k; i <= k; ++i) {
+    for (int j = -k; j <= k; ++j) {
+      if (std::hypot(i, j) * step_m > radius_m + 1e-9) continue;
+      offsets.emplace_back(i * step_m, j * step_m);
+    }
+  }
+  // The lattice is symmetric about the centre, so the plane's gradient decouples:
+  // b = sum(x z) / sum(x^2), c = sum(y z) / sum(y^2), and sum(y^2) = sum(x^2).
+  double sum_xx = 0.0;
+  for (const Eigen::Vector2d& o : offsets) sum_xx += o.x() * o.x();
+  const std::shared_ptr<const sim::Terrain> terrain = site.terrain;
+  return [terrain, offsets, sum_xx](double x, double y) {
+    if (sum_xx <= 0.0) return std::nan("");
+    Eigen::Vector2d sum_xz = Eigen::Vector2d::Zero();
+    for (const Eigen::Vector2d& o : offsets) {
+      sum_xz += o * terrain->CleanHeight(x + o.x(), y + o.y());
+    }
+    return std::atan(sum_xz.norm() / sum_xx) * 180.0 / M_PI;
+  };
+}
+
 mapping::TruthField ReadSimSlopeGrid(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot read slope grid '" + path + "'");
@@ -268,8 +299,10 @@ SiteFigures EvaluateSite(const SiteEvalOptions& options) {
   const std::string slope_path = options.out_dir + "/site_slope.txt";
   sim::WriteSlopeGrid(slope_path, site, options.traversability.resolution_m);
   const mapping::TruthField truth = ReadSimSlopeGrid(slope_path);
-  figures.slope_csf = MeasureSlope(options, truth, csf_ground, csf_objects);
-  figures.slope_truth = MeasureSlope(options, truth, true_ground, true_objects);
+  const mapping::TruthField footprint =
+      FootprintSlope(site, options.traversability.surface.normal_radius_m);
+  figures.slope_csf = MeasureSlope(options, truth, footprint, csf_ground, csf_objects);
+  figures.slope_truth = MeasureSlope(options, truth, footprint, true_ground, true_objects);
   return figures;
 }
 

@@ -79,6 +79,11 @@ struct GroundFigures {
 struct SlopeFigures {
   mapping::LayerComparison slope;  ///< slope (deg) on cells with data vs site_slope.txt
   mapping::SteepCellCheck steep;   ///< cells truly steeper than the vehicle limit
+  /// The same against the clean terrain's slope at the estimator's scale (FootprintSlope):
+  /// site_slope.txt is the slope over one cell, the estimate that over the vehicle footprint,
+  /// so part of the first comparison's error is the difference of scales, not estimation.
+  mapping::LayerComparison slope_footprint;
+  mapping::SteepCellCheck steep_footprint;
   std::size_t measured_cells = 0;
   double seconds = 0.0;
 };
@@ -102,6 +107,10 @@ AccumulatedMap AccumulateSessionA(const sim::SimulationOptions& options,
 
 /// Runs the three measurements. Throws std::invalid_argument on invalid options.
 SiteFigures EvaluateSite(const SiteEvalOptions& options);
+
+/// True slope (deg) of the clean terrain (no gravel) at the vehicle's scale: the tilt of the
+/// least-squares plane through its heights on a 0.1 m lattice within `radius_m` of (x, y).
+mapping::TruthField FootprintSlope(const sim::Site& site, double radius_m);
 
 /// Reads the simulator's slope grid (reference_outputs.h format) as a field: the value of
 /// the cell holding (x, y), NaN outside. Throws std::runtime_error naming the file.

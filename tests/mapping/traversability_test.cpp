@@ -289,6 +289,26 @@ TEST(Traversability, TooFewPointsForAPlaneAreUnknownNotFree) {
   EXPECT_GT(on_line.summary.surface.cells_degenerate, 0u);
 }
 
+TEST(Traversability, SparseFootprintFallsBackToTheWiderNeighbourhood) {
+  // Points 0.45 m apart on a 10 deg plane: a 0.5 m footprint holds fewer than min_points, the
+  // 1 m fallback enough, so every cell with a point gets the plane's slope instead of unknown.
+  const Terrain plane = Plane(10.0, 0.4);
+  Points sparse;
+  for (double x = -3.0; x <= 3.0; x += 0.45) {
+    for (double y = -3.0; y <= 3.0; y += 0.45) sparse.emplace_back(x, y, plane.height(x, y));
+  }
+  const TraversabilityMap map = ComputeTraversability(sparse, {}, TestOptions());
+  EXPECT_GT(map.summary.surface.cells_fallback, 100u);
+  const LayerComparison slope = CompareSlope(map.grid, TrueSlope(plane, Eigen::Vector3d::Zero()));
+  EXPECT_EQ(slope.cells, sparse.size());  // one point per cell, none left unknown
+  EXPECT_LE(slope.rmse, 0.5);
+  TraversabilityOptions no_fallback = TestOptions();
+  no_fallback.surface.fallback_radius_m = no_fallback.surface.normal_radius_m;
+  const TraversabilityMap strict = ComputeTraversability(sparse, {}, no_fallback);
+  EXPECT_EQ(strict.summary.surface.cells_fallback, 0u);
+  EXPECT_GT(strict.summary.surface.cells_too_few_points, 100u);
+}
+
 TEST(Traversability, InvalidOptionsNameTheField) {
   TraversabilityOptions options = TestOptions();
   options.cost.max_slope_deg = 95.0;
@@ -307,6 +327,10 @@ TEST(Traversability, InvalidOptionsNameTheField) {
   options.surface.min_points = 2;
   EXPECT_FALSE(options.IsValid(&why));
   EXPECT_NE(why.find("surface.min_points = 2"), std::string::npos) << why;
+  options = TestOptions();
+  options.surface.fallback_radius_m = 0.2;  // below normal_radius_m
+  EXPECT_FALSE(options.IsValid(&why));
+  EXPECT_NE(why.find("surface.fallback_radius_m = 0.2"), std::string::npos) << why;
   options = TestOptions();
   options.cost.obstacle_max_height_m = 0.1;
   EXPECT_FALSE(options.IsValid(&why));
@@ -342,6 +366,14 @@ TEST(Evaluation, SampleLayerAndCompareAgainstAnotherGrid) {
   EXPECT_EQ(steep.steep_cells, 2u);
   EXPECT_EQ(steep.marked_lethal, 1u);
   EXPECT_DOUBLE_EQ(steep.fraction_marked, 0.5);
+  EXPECT_EQ(steep.steep_unknown, 0u);
+  // A steep cell with points but no slope is counted apart, not as a missed steep cell.
+  slope[10] = std::numeric_limits<float>::quiet_NaN();
+  classes[10] = CellClass::kUnknown;
+  const SteepCellCheck with_unknown = CheckSteepCells(estimate, classes, field, 9.5);
+  EXPECT_EQ(with_unknown.steep_cells, 1u);
+  EXPECT_EQ(with_unknown.steep_unknown, 1u);
+  EXPECT_DOUBLE_EQ(with_unknown.fraction_marked, 1.0);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 
@@ -73,19 +74,35 @@ TEST_F(SiteMappingTest, GroundLabelsAgreeWithTheHitSurfaces) {
   EXPECT_GE(g.Kappa(), 0.75);
 }
 
-// Issue 8 asks for a slope RMSE <= 2 deg and >= 95 % of the steep cells marked; measured
-// (seed 1, 0.2 m cells): RMSE 3.5 deg (true ground) / 16.6 deg (cloth filter ground, whose
-// low object points tilt the cells they fall in), steep cells marked 65 % / 65 % here and
-// 90 % / 88 % on the full session. Neither bound is met, so neither is asserted; these guard
-// the grid itself on the truly ground returns against regressions (see the report).
+// Issue 8 asks for a slope RMSE <= 2 deg and >= 95 % of the steep cells marked, on cells with
+// a slope estimate. Measured here (seed 1, quick, 0.2 m cells, 0.5 m footprint with a 1 m
+// fallback): RMSE 3.8 deg on the true ground returns (16.5 deg from the cloth filter's ground,
+// whose low object points tilt the cells they fall in), 89 % of the steep cells marked, 35
+// steep cells with points left unknown (673 with the former 0.3 m fit without fallback). Most
+// of the squared error sits on trench walls and bank edges steeper than 30 deg, which the
+// one-cell truth resolves and a footprint-scale fit smooths; against the clean terrain's slope
+// at the footprint scale the RMSE is 2.9 deg. Full session: 3.45 deg, 93.9 % marked, 3 steep
+// cells unknown, 1.78 deg at the footprint scale. Neither issue bound is met here, so neither
+// is asserted; these guard the figures against regressions.
 TEST_F(SiteMappingTest, SlopeFollowsTheTrueSlopeGrid) {
   const SlopeFigures& s = figures_->slope_truth;
+  for (const SlopeFigures* f : {&figures_->slope_truth, &figures_->slope_csf}) {
+    std::printf(
+        "slope rmse %.2f deg (bias %.2f, %zu cells), steep marked %zu/%zu (%zu unknown); "
+        "at footprint scale rmse %.2f deg, steep marked %zu/%zu\n",
+        f->slope.rmse, f->slope.mean_error, f->slope.cells, f->steep.marked_lethal,
+        f->steep.steep_cells, f->steep.steep_unknown, f->slope_footprint.rmse,
+        f->steep_footprint.marked_lethal, f->steep_footprint.steep_cells);
+  }
   ASSERT_GT(s.slope.cells, 1000u);
-  EXPECT_LE(s.slope.rmse, 4.5);
-  EXPECT_LE(std::abs(s.slope.mean_error), 1.5);
+  EXPECT_LE(s.slope.rmse, 4.2);
+  EXPECT_LE(std::abs(s.slope.mean_error), 1.0);
+  EXPECT_LE(s.slope_footprint.rmse, 3.2);
   ASSERT_GT(s.steep.steep_cells, 100u);
-  EXPECT_GE(s.steep.fraction_marked, 0.55);
+  EXPECT_GE(s.steep.fraction_marked, 0.85);
+  EXPECT_LE(s.steep.steep_unknown, s.steep.steep_cells / 20);  // the fallback leaves few unknown
   EXPECT_GT(figures_->slope_csf.slope.cells, 1000u);
+  EXPECT_GE(figures_->slope_csf.steep.fraction_marked, 0.85);
 }
 
 // The distance field the thickness rests on: zero on the surfaces the rays hit, and the

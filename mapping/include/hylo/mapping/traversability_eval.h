@@ -43,13 +43,19 @@ inline LayerComparison CompareSlope(const GridMap& grid, const TruthField& true_
 TruthField SampleLayer(const GridMap& truth_grid, const std::string& layer);
 
 struct SteepCellCheck {
-  std::size_t steep_cells = 0;    ///< measured cells whose true slope exceeds the limit
+  std::size_t steep_cells = 0;    ///< cells with a slope estimate whose true slope exceeds
+                                  ///< the limit
   std::size_t marked_lethal = 0;  ///< of those, classed lethal
   double fraction_marked = 0.0;   ///< marked_lethal / steep_cells (1 when none are steep)
+  std::size_t steep_unknown = 0;  ///< cells with ground points but no slope estimate (too
+                                  ///< few points) whose true slope exceeds the limit; not in
+                                  ///< steep_cells, reported so they are not hidden
 };
 
-/// Among cells with data whose true slope exceeds `max_slope_deg`, how many are marked
-/// non-traversable (lethal). Unknown cells are not counted as marked.
+/// Among cells with a slope estimate (the "cells with data" of CompareSlope) whose true slope
+/// exceeds `max_slope_deg`, how many are marked non-traversable (lethal). Measured cells left
+/// without a slope are counted apart (steep_unknown): an unknown cell is not a wrong slope, a
+/// planner treats it as unexplored.
 SteepCellCheck CheckSteepCells(const GridMap& grid, const std::vector<CellClass>& classes,
                                const TruthField& true_slope_deg, double max_slope_deg);
 
