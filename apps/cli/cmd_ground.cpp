@@ -35,10 +35,14 @@ io::Json SummaryJson(const GroundArgs& args, const mapping::ClothFilterResult& r
   opt["slope_height_threshold_m"] = o.slope_height_threshold_m;
   opt["slope_min_region_particles"] = o.slope_min_region_particles;
   opt["convergence_threshold_m"] = o.convergence_threshold_m;
+  opt["reference_hole_fill"] = o.reference_hole_fill;
+  opt["low_outlier_depth_m"] = o.low_outlier_depth_m;
+  opt["gravity"] = o.gravity;
   io::Json& p = j["points"];
   p["ground"] = r.num_ground;
   p["objects"] = r.num_objects;
   p["non_finite"] = r.num_invalid;
+  p["low_outliers"] = r.num_low_outliers;
   io::Json& c = j["cloth"];
   c["cols"] = r.cloth_cols;
   c["rows"] = r.cloth_rows;
@@ -113,6 +117,15 @@ void AddGroundCommand(CLI::App& root) {
                 "skip the steep-slope post-processing (ST)");
   cmd->add_option("--slope-threshold", o.slope_height_threshold_m,
                   "post-processing height continuity threshold, m")
+      ->capture_default_str();
+  cmd->add_option("--low-outlier-depth", o.low_outlier_depth_m,
+                  "points this far below nearly all neighbours do not hold the cloth up, m "
+                  "(0 = off)")
+      ->capture_default_str();
+  cmd->add_flag("--reference-hole-fill", o.reference_hole_fill,
+                "fill empty particles along rows/columns as the original CSF code does");
+  cmd->add_option("--gravity", o.gravity,
+                  "cloth gravity per step^2 (the original code's build used 0.2 dT^2)")
       ->capture_default_str();
   cmd->add_option("--json", args.json_path, "write a JSON summary here");
   cmd->callback([] { RunGround(args); });

@@ -24,6 +24,7 @@ io::Json OptionsJson(const mapping::TraversabilityOptions& o) {
   j["resolution_m"] = o.resolution_m;
   j["max_hole_size_m"] = o.elevation.max_hole_size_m;
   j["normal_radius_m"] = o.surface.normal_radius_m;
+  j["fallback_radius_m"] = o.surface.fallback_radius_m;
   j["step_radius_m"] = o.surface.step_radius_m;
   j["max_slope_deg"] = o.cost.max_slope_deg;
   j["max_step_m"] = o.cost.max_step_m;
@@ -55,6 +56,7 @@ io::Json SummaryJson(const TraversabilityArgs& args, const mapping::Traversabili
   cells["hole_filled"] = s.elevation.filled_cells;
   cells["holes_too_large"] = s.elevation.holes_too_large;
   cells["without_plane"] = s.surface.cells_too_few_points + s.surface.cells_degenerate;
+  cells["plane_from_fallback_radius"] = s.surface.cells_fallback;
   cells["lethal_from_obstacles"] = s.obstacles.lethal_cells;
   io::Json& slope = j["slope_deg"];
   slope["cells"] = s.slope.cells;
