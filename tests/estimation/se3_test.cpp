@@ -7,6 +7,8 @@
 #include <random>
 #include <vector>
 
+#include "lie_test_util.h"
+
 // Property tests of SE3 (tangent [ρ; φ]): against long-double power series, central
 // differences of the defining relations, and the 4×4 matrix algebra, at rotation angles 0,
 // 1e-9, on both sides of the series switches, generic, and just below π.
@@ -18,15 +20,7 @@ using Vec3 = Eigen::Vector3d;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat4 = Eigen::Matrix4d;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
-constexpr double kPi = 3.14159265358979323846;
-
-const std::vector<double> kAngles = {0.0,    1e-9, 1e-5, 0.0099, 0.0101,    0.0999,
-                                     0.1001, 0.7,  2.0,  3.0,    kPi - 1e-6};
-
-Vec3 RandomUnit(std::mt19937* rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Vec3(n(*rng), n(*rng), n(*rng)).normalized();
-}
+using namespace lie::testing;  // kPi, kAngles, RandomUnit, MaxAbs, Numeric/JetJacobian
 
 // Tangent vectors [ρ; φ] with |φ| from kAngles (random axes) and ρ of a few metres.
 std::vector<Vec6> TestVectors() {
@@ -43,12 +37,6 @@ std::vector<Vec6> TestVectors() {
   return out;
 }
 
-long double InvFactorial(int k) {
-  long double f = 1.0L;
-  for (int i = 2; i <= k; ++i) f *= i;
-  return 1.0L / f;
-}
-
 // Σ_k coeff(k) A^k in long double.
 template <int N, class Coeff>
 Eigen::Matrix<double, N, N> MatrixSeries(const Eigen::Matrix<double, N, N>& A, Coeff coeff) {
@@ -60,33 +48,6 @@ Eigen::Matrix<double, N, N> MatrixSeries(const Eigen::Matrix<double, N, N>& A, C
     power = power * P;
   }
   return sum.template cast<double>();
-}
-
-template <class F>
-Mat6 NumericJacobian(const F& f, const Vec6& x, double h) {
-  Mat6 J;
-  for (int j = 0; j < 6; ++j) {
-    const Vec6 e = h * Vec6::Unit(j);
-    J.col(j) = (f(Vec6(x + e)) - f(Vec6(x - e))) / (2.0 * h);
-  }
-  return J;
-}
-
-// Exact derivative (ceres::Jet) of f: R^6 → R^M at x.
-template <int M, class F>
-Eigen::Matrix<double, M, 6> JetJacobian(const F& f, const Vec6& x) {
-  using J6 = ceres::Jet<double, 6>;
-  Eigen::Matrix<J6, 6, 1> xj;
-  for (int i = 0; i < 6; ++i) xj[i] = J6(x[i], i);
-  const Eigen::Matrix<J6, M, 1> y = f(xj);
-  Eigen::Matrix<double, M, 6> out;
-  for (int i = 0; i < M; ++i) out.row(i) = y[i].v.transpose();
-  return out;
-}
-
-template <class Derived>
-double MaxAbs(const Eigen::MatrixBase<Derived>& m) {
-  return m.cwiseAbs().maxCoeff();
 }
 
 TEST(SE3, ExpMatchesMatrixExponentialSeries) {
@@ -173,24 +134,9 @@ TEST(SE3, InverseJacobiansAreInverses) {
 }
 
 // Each Jacobian against central differences of its defining relation (header comment).
+// h = 1e-7 keeps |φ| + h below π, so Log does not wrap.
 TEST(SE3, JacobiansMatchCentralDifferencesOfTheirDefinitions) {
-  constexpr double kH = 1e-7;  // keeps |φ| + h below π, so Log does not wrap
-  constexpr double kTol = 1e-7;
-  for (const Vec6& xi : TestVectors()) {
-    const SE3d X = SE3d::Exp(xi);
-    const Mat6 jr =
-        NumericJacobian([&](const Vec6& x) { return (X.Inverse() * SE3d::Exp(x)).Log(); }, xi, kH);
-    const Mat6 jl =
-        NumericJacobian([&](const Vec6& x) { return (SE3d::Exp(x) * X.Inverse()).Log(); }, xi, kH);
-    const Mat6 jr_inv =
-        NumericJacobian([&](const Vec6& d) { return (X * SE3d::Exp(d)).Log(); }, Vec6::Zero(), kH);
-    const Mat6 jl_inv =
-        NumericJacobian([&](const Vec6& d) { return (SE3d::Exp(d) * X).Log(); }, Vec6::Zero(), kH);
-    EXPECT_LT(MaxAbs(SE3d::RightJacobian(xi) - jr), kTol) << xi.transpose();
-    EXPECT_LT(MaxAbs(SE3d::LeftJacobian(xi) - jl), kTol) << xi.transpose();
-    EXPECT_LT(MaxAbs(SE3d::RightJacobianInverse(xi) - jr_inv), kTol) << xi.transpose();
-    EXPECT_LT(MaxAbs(SE3d::LeftJacobianInverse(xi) - jl_inv), kTol) << xi.transpose();
-  }
+  ExpectJacobiansMatchCentralDifferences<SE3d>(TestVectors(), /*h=*/1e-7, /*tolerance=*/1e-7);
 }
 
 TEST(SE3, PlusAndMinusAreInverse) {

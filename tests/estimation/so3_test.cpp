@@ -7,6 +7,8 @@
 #include <random>
 #include <vector>
 
+#include "lie_test_util.h"
+
 // Property tests of SO3: every check compares against something computed independently (a
 // long-double power series, central differences, or the matrix algebra), at the identity, at
 // θ = 1e-9, on both sides of the series/closed-form switches, at generic angles and near π.
@@ -17,17 +19,7 @@ namespace {
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using Mat3L = Eigen::Matrix<long double, 3, 3>;
-constexpr double kPi = 3.14159265358979323846;
-
-// Angles that exercise each branch: 0, tiny, both sides of θ = 1e-2 and θ = 0.1 (the series
-// switches in lie_common.h), generic, and just below π.
-const std::vector<double> kAngles = {0.0,    1e-9, 1e-5, 0.0099, 0.0101,    0.0999,
-                                     0.1001, 0.7,  2.0,  3.0,    kPi - 1e-6};
-
-Vec3 RandomUnit(std::mt19937* rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Vec3(n(*rng), n(*rng), n(*rng)).normalized();
-}
+using namespace lie::testing;  // kPi, kAngles, RandomUnit, MaxAbs, Numeric/JetJacobian
 
 // A few rotation vectors of each angle in kAngles, along random axes (fixed seed).
 std::vector<Vec3> TestVectors() {
@@ -53,37 +45,6 @@ Mat3 MatrixSeries(const Vec3& phi, Coeff coeff) {
   }
   return sum.cast<double>();
 }
-
-long double InvFactorial(int k) {
-  long double f = 1.0L;
-  for (int i = 2; i <= k; ++i) f *= i;
-  return 1.0L / f;
-}
-
-// Central differences of f: R^3 → R^3 at x (step h in each coordinate).
-template <class F>
-Mat3 NumericJacobian(const F& f, const Vec3& x, double h) {
-  Mat3 J;
-  for (int j = 0; j < 3; ++j) {
-    const Vec3 e = h * Vec3::Unit(j);
-    J.col(j) = (f(Vec3(x + e)) - f(Vec3(x - e))) / (2.0 * h);
-  }
-  return J;
-}
-
-// Exact derivative of f at x through ceres::Jet (forward-mode autodiff).
-template <class F>
-Mat3 JetJacobian(const F& f, const Vec3& x) {
-  using J3 = ceres::Jet<double, 3>;
-  Eigen::Matrix<J3, 3, 1> xj;
-  for (int i = 0; i < 3; ++i) xj[i] = J3(x[i], i);
-  const Eigen::Matrix<J3, 3, 1> y = f(xj);
-  Mat3 out;
-  for (int i = 0; i < 3; ++i) out.row(i) = y[i].v.transpose();
-  return out;
-}
-
-double MaxAbs(const Mat3& m) { return m.cwiseAbs().maxCoeff(); }
 
 long double Factorial(int n) { return 1.0L / InvFactorial(n); }
 long double Sign(int k) { return k % 2 == 0 ? 1.0L : -1.0L; }
@@ -240,23 +201,7 @@ TEST(SO3, InverseJacobiansAreInverses) {
 // Each Jacobian against central differences of its defining relation (header comment).
 // h = 1e-7 keeps Exp(φ)·Exp(h e) below π when |φ| = π − 1e-6, so Log does not wrap.
 TEST(SO3, JacobiansMatchCentralDifferencesOfTheirDefinitions) {
-  constexpr double kH = 1e-7;
-  constexpr double kTol = 1e-7;
-  for (const Vec3& phi : TestVectors()) {
-    const SO3d R = SO3d::Exp(phi);
-    const Mat3 jr =
-        NumericJacobian([&](const Vec3& x) { return (R.Inverse() * SO3d::Exp(x)).Log(); }, phi, kH);
-    const Mat3 jl =
-        NumericJacobian([&](const Vec3& x) { return (SO3d::Exp(x) * R.Inverse()).Log(); }, phi, kH);
-    const Mat3 jr_inv =
-        NumericJacobian([&](const Vec3& d) { return (R * SO3d::Exp(d)).Log(); }, Vec3::Zero(), kH);
-    const Mat3 jl_inv =
-        NumericJacobian([&](const Vec3& d) { return (SO3d::Exp(d) * R).Log(); }, Vec3::Zero(), kH);
-    EXPECT_LT(MaxAbs(SO3d::RightJacobian(phi) - jr), kTol) << phi.transpose();
-    EXPECT_LT(MaxAbs(SO3d::LeftJacobian(phi) - jl), kTol) << phi.transpose();
-    EXPECT_LT(MaxAbs(SO3d::RightJacobianInverse(phi) - jr_inv), kTol) << phi.transpose();
-    EXPECT_LT(MaxAbs(SO3d::LeftJacobianInverse(phi) - jl_inv), kTol) << phi.transpose();
-  }
+  ExpectJacobiansMatchCentralDifferences<SO3d>(TestVectors(), /*h=*/1e-7, /*tolerance=*/1e-7);
 }
 
 TEST(SO3, PlusAndMinusAreInverse) {
@@ -274,7 +219,7 @@ TEST(SO3, JetDerivativeOfPerturbedActionIsMinusRTimesHatP) {
   const Vec3 p(0.4, -2.0, 1.3);
   for (const Vec3& phi : TestVectors()) {
     const SO3d R = SO3d::Exp(phi);
-    const Mat3 J = JetJacobian(
+    const Mat3 J = JetJacobian<3>(
         [&](const auto& d) {
           using JetT = typename std::decay_t<decltype(d)>::Scalar;
           const SO3<JetT> Rj = R.cast<JetT>();
@@ -289,7 +234,7 @@ TEST(SO3, JetDerivativeOfPerturbedActionIsMinusRTimesHatP) {
 TEST(SO3, JetDerivativeOfExpActionUsesTheRightJacobian) {
   const Vec3 p(0.4, -2.0, 1.3);
   for (const Vec3& phi : TestVectors()) {
-    const Mat3 J = JetJacobian(
+    const Mat3 J = JetJacobian<3>(
         [&](const auto& x) {
           using JetT = typename std::decay_t<decltype(x)>::Scalar;
           return (SO3<JetT>::Exp(x) * p.cast<JetT>()).eval();
@@ -304,7 +249,7 @@ TEST(SO3, JetDerivativeOfExpActionUsesTheRightJacobian) {
 TEST(SO3, JetDerivativeOfLogIsTheRightJacobianInverse) {
   for (const Vec3& phi : TestVectors()) {
     const SO3d R = SO3d::Exp(phi);
-    const Mat3 J = JetJacobian(
+    const Mat3 J = JetJacobian<3>(
         [&](const auto& d) {
           using JetT = typename std::decay_t<decltype(d)>::Scalar;
           return Minus(Plus(R.cast<JetT>(), d), SO3<JetT>());
