@@ -14,6 +14,7 @@ void AddInfoCommand(CLI::App& root);
 void AddCraftCommand(CLI::App& root);
 void AddGroundCommand(CLI::App& root);
 void AddMapCommand(CLI::App& root);
+void AddLocalizeCommand(CLI::App& root);
 void AddSimulateCommand(CLI::App& root);
 void AddTraversabilityCommand(CLI::App& root);
 void AddEvalCommand(CLI::App& root);

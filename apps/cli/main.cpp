@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   hylo::cli::AddCraftCommand(app);
   hylo::cli::AddGroundCommand(app);
   hylo::cli::AddMapCommand(app);
+  hylo::cli::AddLocalizeCommand(app);
   hylo::cli::AddSimulateCommand(app);
   hylo::cli::AddTraversabilityCommand(app);
   hylo::cli::AddEvalCommand(app);

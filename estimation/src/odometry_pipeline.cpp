@@ -90,7 +90,8 @@ bool OdometryPipelineOptions::IsValid(std::string* why) const {
   }
   return SectionValid(estimator, "estimator", why) && SectionValid(init, "init", why) &&
          SectionValid(queue, "queue", why) && SectionValid(preprocess, "preprocess", why) &&
-         SectionValid(planes, "planes", why) && SectionValid(map, "map", why);
+         SectionValid(planes, "planes", why) && SectionValid(map, "map", why) &&
+         SectionValid(localization, "localization", why);
 }
 
 OdometryPipeline::OdometryPipeline(const OdometryPipelineOptions& options)
@@ -99,7 +100,8 @@ OdometryPipeline::OdometryPipeline(const OdometryPipelineOptions& options)
       initializer_(options.init, options.gravity_mps2),
       estimator_(Estimator::Create(options.estimator)),
       map_(options.map),
-      matcher_(map_, options.planes) {
+      matcher_(map_, options.planes),
+      icp_initializer_(options.localization.icp) {
   std::string why;
   if (!options_.IsValid(&why)) throw InternalError("invalid options: " + why);
 }
@@ -110,16 +112,37 @@ PipelineCounters OdometryPipeline::counters() const {
   return c;
 }
 
-void OdometryPipeline::Initialize(const MeasurementGroup& group) {
-  const StateCovariance P0 = Ieskf::InitialCovariance(options_.estimator.ieskf);
+bool OdometryPipeline::Initialize(const MeasurementGroup& group) {
+  if (have_prior_ && !localizing_) {
+    status_ = Status::kFailed;
+    message_ = "a prior map was given without an initial guess (SetInitialGuess)";
+    return true;
+  }
   if (!options_.estimator.use_imu) {
+    if (localizing_) {
+      // Without an IMU nothing says the vehicle is at rest: the first scan alone is
+      // registered, and then processed like every other scan from the accepted pose.
+      AccumulateStaticScan(group);
+      StartFromIcp(group);
+      return status_ != Status::kRunning;
+    }
     NavState x;
     x.t_ns = group.scan.t_ns;  // the first scan then registers at its own end time
     x.gravity_map = Eigen::Vector3d(0.0, 0.0, -options_.gravity_mps2);
     x.T_imu_lidar = options_.T_imu_lidar;
-    estimator_->Initialize(x, P0);
+    estimator_->Initialize(x, Ieskf::InitialCovariance(options_.estimator.ieskf));
     status_ = Status::kRunning;
-    return;
+    return false;
+  }
+  if (initializer_.status() == ImuInitializer::Status::kDone) {
+    // Localization only: the IMU is initialised and more static scans are wanted. A group in
+    // which the vehicle moves ends the accumulation and is processed from the ICP pose.
+    if (AccumulateStaticScan(group)) {
+      if (static_scans_ >= options_.localization.init_scans) StartFromIcp(group);
+      return true;
+    }
+    StartFromIcp(group);
+    return status_ != Status::kRunning;
   }
   std::size_t used = 0;
   for (const ImuSample& s : group.imu) {
@@ -129,29 +152,45 @@ void OdometryPipeline::Initialize(const MeasurementGroup& group) {
   if (initializer_.status() == ImuInitializer::Status::kFailed) {
     status_ = Status::kFailed;
     message_ = initializer_.message();
-    return;
+    return true;
   }
-  if (initializer_.status() != ImuInitializer::Status::kDone) return;
+  if (localizing_) {
+    // The scans taken while the IMU proves the vehicle is at rest feed the ICP initializer.
+    AccumulateStaticScan(group);
+    if (initializer_.status() == ImuInitializer::Status::kDone &&
+        static_scans_ >= options_.localization.init_scans) {
+      StartFromIcp(group);
+    }
+    return true;
+  }
+  if (initializer_.status() != ImuInitializer::Status::kDone) return true;
   NavState x = initializer_.state();
   x.T_imu_lidar = options_.T_imu_lidar;
-  estimator_->Initialize(x, P0);
+  estimator_->Initialize(x, Ieskf::InitialCovariance(options_.estimator.ieskf));
   for (std::size_t i = used - 1; i < group.imu.size(); ++i) estimator_->AddImu(group.imu[i]);
   status_ = Status::kRunning;
+  // The scan that completed the initialisation started before it: dropped.
+  return true;
 }
 
 void OdometryPipeline::Process(std::vector<ScanResult>* results, bool flush) {
   MeasurementGroup group;
   while (status_ != Status::kFailed && queue_.Pop(&group, flush)) {
     if (status_ == Status::kInitializing) {
-      Initialize(group);
-      // With an IMU the scan that completed the initialisation started before it: dropped.
-      if (options_.estimator.use_imu || status_ != Status::kRunning) {
-        ++counters_.scans_before_init;
+      const std::size_t before = counters_.scans_initializer;
+      if (Initialize(group)) {
+        if (counters_.scans_initializer == before) ++counters_.scans_before_init;
         continue;
       }
     }
     ScanResult result;
     if (ProcessScan(&group, &result)) results->push_back(std::move(result));
+  }
+  // A log that ends while the initializer still waits for static scans: register what there
+  // is rather than end without a pose.
+  if (flush && status_ == Status::kInitializing && localizing_ && static_scans_ > 0 &&
+      initializer_.status() == ImuInitializer::Status::kDone) {
+    StartFromIcp(MeasurementGroup());
   }
 }
 
@@ -199,11 +238,13 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
   ++counters_.scans_processed;
   if (!result->update.applied) ++counters_.scans_not_applied;
   if (result->update.degenerate) ++counters_.scans_degenerate;
+  // Health, loss and relocalization may replace the estimator's pose.
+  if (localizing_) CheckHealth(scan, ds, knots, result);
 
   const auto map_start = std::chrono::steady_clock::now();
   const NavState& x = estimator_->state();
-  if (options_.update_map && (map_.Size() == 0 || result->update.applied)) {
-    const lie::SE3d T_map_lidar = x.T_map_lidar();
+  const lie::SE3d T_map_lidar = x.T_map_lidar();
+  if (MapUpdateAllowed(x.t_ns, *result)) {
     registration::PointCloud points_map;
     points_map.reserve(ds.points_lidar.size());
     for (const Eigen::Vector3f& p : ds.points_lidar) {
@@ -214,7 +255,6 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
   }
   result->map_ms = MsSince(map_start);
   if (result->update.applied) {
-    const lie::SE3d T_map_lidar = x.T_map_lidar();
     result->registered_points_map.reserve(dense_lidar.size());
     for (const Eigen::Vector3f& p : dense_lidar) {
       result->registered_points_map.push_back((T_map_lidar * p.cast<double>()).cast<float>());
@@ -224,9 +264,47 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
   result->t_ns = x.t_ns;
   result->state = x;
   result->pose_covariance = estimator_->PoseCovariance();
+  result->T_map_odom = T_map_odom_;
+  FillTwist(*group, result);
   result->total_ms = MsSince(start);
   result->cpu_ms = CpuMs() - cpu_start_ms;
   return true;
+}
+
+void OdometryPipeline::FillTwist(const MeasurementGroup& group, ScanResult* result) {
+  const NavState& x = result->state;
+  const Eigen::Matrix3d R_imu_map = x.R_map_imu.Matrix().transpose();
+  const StateCovariance P = estimator_->Covariance();
+  using state_index::kGyroBias;
+  using state_index::kVelocity;
+  result->linear_velocity_imu = R_imu_map * x.v_map_imu;
+  result->twist_covariance.setZero();
+  result->twist_covariance.topLeftCorner<3, 3>() =
+      R_imu_map * P.block<3, 3>(kVelocity, kVelocity) * R_imu_map.transpose();
+  if (options_.estimator.use_imu) {
+    if (!group.imu.empty()) last_gyro_imu_ = group.imu.back().gyro_imu;
+    if (group.imu.size() >= 2) {
+      imu_period_s_ = NanosToSeconds(group.imu.back().t_ns - group.imu.front().t_ns) /
+                      static_cast<double>(group.imu.size() - 1);
+    }
+    result->angular_velocity_imu = last_gyro_imu_ - x.gyro_bias;
+    // One sample's white noise (the continuous density over the sample period) plus the bias.
+    const double density = options_.estimator.imu_noise.gyro_noise_density;
+    result->twist_covariance.bottomRightCorner<3, 3>() =
+        P.block<3, 3>(kGyroBias, kGyroBias) +
+        density * density / std::max(imu_period_s_, 1e-4) * Eigen::Matrix3d::Identity();
+  } else if (have_previous_result_ && x.t_ns > previous_state_.t_ns) {
+    // No IMU: the mean rate between the last two poses, with the variance of that difference.
+    const double dt = NanosToSeconds(x.t_ns - previous_state_.t_ns);
+    result->angular_velocity_imu =
+        (previous_state_.R_map_imu.Inverse() * x.R_map_imu).Log() / dt;
+    result->twist_covariance.bottomRightCorner<3, 3>() =
+        (previous_pose_covariance_.bottomRightCorner<3, 3>() +
+         result->pose_covariance.bottomRightCorner<3, 3>()) / (dt * dt);
+  }
+  have_previous_result_ = true;
+  previous_state_ = x;
+  previous_pose_covariance_ = result->pose_covariance;
 }
 
 }  // namespace hylo::estimation

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
+#include "hylo/registration/pose_guess.h"
 #include "run_config_fields.h"
 #include "yaml_visitors.h"
 
@@ -86,8 +88,32 @@ bool RunConfig::IsValid(std::string* why) const {
   return SectionValid(lidar, "lidar", why) && SectionValid(imu, "imu", why) &&
          SectionValid(T_imu_lidar, "T_imu_lidar", why) &&
          SectionValid(preprocess, "preprocess", why) && SectionValid(init, "init", why) &&
-         SectionValid(ieskf, "ieskf", why) && SectionValid(planes, "planes", why) &&
-         SectionValid(map, "map", why) && SectionValid(output, "output", why);
+         SectionValid(ieskf, "ieskf", why) &&
+         SectionValid(planes, "planes", why) &&
+         SectionValid(map, "map", why) && SectionValid(localization, "localization", why) &&
+         SectionValid(output, "output", why);
+}
+
+bool MapConfig::IsValid(std::string* why) const {
+  if (!mapping::MapManagerOptions::IsValid(why)) return false;
+  if (!std::isfinite(prior_resolution_m) || prior_resolution_m < 0.0)
+    return Invalid(why, "prior_resolution_m", prior_resolution_m, "must be finite and >= 0");
+  if (!std::isfinite(update_after_s) || (update_after_s < 0.0 && update_after_s != -1.0))
+    return Invalid(why, "update_after_s", update_after_s, "must be -1 (never) or >= 0 s");
+  return true;
+}
+
+bool LocalizationConfig::IsValid(std::string* why) const {
+  if (!initial_guess.empty()) {
+    try {
+      registration::ParsePoseGuess(initial_guess);
+    } catch (const std::invalid_argument& e) {
+      return Invalid(why, "initial_guess", "'" + initial_guess + "'", e.what());
+    }
+  }
+  estimation::LocalizationOptions checked = options;
+  checked.update_after_s = -1.0;  // validated in map:
+  return checked.IsValid(why);
 }
 
 bool OutputConfig::IsValid(std::string* why) const {
@@ -96,6 +122,16 @@ bool OutputConfig::IsValid(std::string* why) const {
   if (dense_map_voxel_m > 0.0 && dense_map_voxel_m < 0.01)
     return Invalid(why, "dense_map_voxel_m", dense_map_voxel_m,
                    "must be >= 0.01 m (finer voxels keep every return and exhaust memory)");
+  const std::pair<const char*, const std::string*> frames[] = {
+      {"map_frame", &map_frame}, {"odom_frame", &odom_frame}, {"base_frame", &base_frame}};
+  for (const auto& [key, name] : frames) {
+    if (name->empty() || name->front() == '/' || name->find_first_of(" \t") != std::string::npos)
+      return Invalid(why, key, "'" + *name + "'",
+                     "must be a non-empty frame name without spaces or a leading '/'");
+  }
+  if (map_frame == odom_frame || odom_frame == base_frame || map_frame == base_frame)
+    return Invalid(why, "odom_frame", "'" + odom_frame + "'",
+                   "map, odom and base frames must differ");
   return true;
 }
 
@@ -116,6 +152,8 @@ estimation::OdometryPipelineOptions RunConfig::PipelineOptions() const {
   o.preprocess.max_range_m = lidar.max_range_m;
   o.planes = planes;
   o.map = map;
+  o.localization = localization.options;
+  o.localization.update_after_s = map.update_after_s;
   o.registered_scan_voxel_m = output.dense_map_voxel_m;
   const Eigen::Isometry3d T = T_imu_lidar.ToIsometry();
   o.T_imu_lidar = estimation::lie::SE3d(estimation::lie::SO3d::FromMatrix(T.linear()),

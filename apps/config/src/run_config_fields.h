@@ -90,15 +90,54 @@ void VisitFields(V& v, registration::PlaneMatcherOptions& o) {
 }
 
 template <class V>
-void VisitFields(V& v, mapping::MapManagerOptions& o) {
+void VisitFields(V& v, MapConfig& o) {
   v("voxel_size_m", o.voxel_size_m);
   v("window_size_m", o.window_size_m);
   v("window_margin_m", o.window_margin_m);
+  v("prior_resolution_m", o.prior_resolution_m);
+  v("update_after_s", o.update_after_s);
+}
+
+template <class V>
+void VisitFields(V& v, registration::IcpInitializerOptions& o) {
+  v("fitness_threshold_m2", o.fitness_threshold_m2);
+  v("fitness_max_range_m", o.fitness_max_range_m);
+  v("inlier_distance_m", o.inlier_distance_m);
+  v("min_inlier_ratio", o.min_inlier_ratio);
+  v("min_constraint", o.min_constraint);
+  v("fine_voxel_m", o.fine_voxel_m);
+  v("fine_max_points", o.fine_max_points);
+  v("search_enabled", o.search_enabled);
+  v("yaw_range_deg", o.yaw_range_deg);
+  v("yaw_step_deg", o.yaw_step_deg);
+  v("position_range_m", o.position_range_m);
+  v("position_step_m", o.position_step_m);
+  v("max_refined_candidates", o.max_refined_candidates);
+  v("reject_ambiguous", o.reject_ambiguous);
+  v("max_hypotheses", o.max_hypotheses);
+}
+
+template <class V>
+void VisitFields(V& v, LocalizationConfig& c) {
+  estimation::LocalizationOptions& o = c.options;
+  v("initial_guess", c.initial_guess);
+  v("init_scans", o.init_scans);
+  v("health_inlier_distance_m", o.health_inlier_distance_m);
+  v("health_max_range_m", o.health_max_range_m);
+  v("health_max_points", o.health_max_points);
+  v("min_inlier_ratio", o.min_inlier_ratio);
+  v("min_matches", o.min_matches);
+  v("lost_after_scans", o.lost_after_scans);
+  v("relocalize_retry_scans", o.relocalize_retry_scans);
+  v.Section("icp", o.icp);
 }
 
 template <class V>
 void VisitFields(V& v, OutputConfig& output) {
   v("dense_map_voxel_m", output.dense_map_voxel_m);
+  v("map_frame", output.map_frame);
+  v("odom_frame", output.odom_frame);
+  v("base_frame", output.base_frame);
 }
 
 template <class V>
@@ -112,6 +151,7 @@ void VisitFields(V& v, RunConfig& run) {
   v.Section("ieskf", run.ieskf);
   v.Section("planes", run.planes);
   v.Section("map", run.map);
+  v.Section("localization", run.localization);
   v.Section("output", run.output);
 }
 

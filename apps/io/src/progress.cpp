@@ -6,10 +6,11 @@
 
 namespace hylo::io {
 
-Progress::Progress(std::string label, std::size_t total)
+Progress::Progress(std::string label, std::size_t total, bool enabled)
     : label_(std::move(label)),
       total_(total),
       tty_(isatty(fileno(stderr)) != 0),
+      enabled_(enabled),
       start_(std::chrono::steady_clock::now()),
       last_print_(start_) {}
 
@@ -50,6 +51,7 @@ void Progress::Finish() {
 }
 
 void Progress::Print(std::size_t done, bool final_line) {
+  if (!enabled_) return;
   const double elapsed = ElapsedSeconds();
   if (total_ > 0) {
     std::fprintf(stderr, "%s[%s] %zu/%zu (%3.0f%%) %.1f s%s", tty_ ? "\r" : "", label_.c_str(),

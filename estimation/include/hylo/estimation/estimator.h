@@ -76,8 +76,11 @@ class Estimator {
   virtual bool initialized() const = 0;
   /// The state after the last Update (or Initialize).
   virtual const NavState& state() const = 0;
+  /// The full error-state covariance at state(), order of nav_state.h. Blocks a back-end
+  /// does not estimate (e.g. a fixed extrinsic) hold their initial values.
+  virtual StateCovariance Covariance() const = 0;
   /// 6×6 pose covariance, order [δp (map, m); δθ (IMU frame, rad)] (nav_state.h).
-  virtual PoseCovariance6 PoseCovariance() const = 0;
+  virtual PoseCovariance6 PoseCovariance() const { return PoseBlock(Covariance()); }
 };
 
 /// "ieskf" / "sliding_window".

@@ -33,6 +33,7 @@ class Ieskf final : public Estimator {
 
   bool initialized() const override { return initialized_; }
   const NavState& state() const override { return state_; }
+  StateCovariance Covariance() const override { return P_; }
   PoseCovariance6 PoseCovariance() const override { return PoseBlock(P_); }
   const StateCovariance& covariance() const { return P_; }
 

@@ -51,10 +51,33 @@ struct TransformConfig {
   bool IsValid(std::string* why) const;
 };
 
+/// Section `map:` — the map manager's settings plus what localization adds.
+struct MapConfig : mapping::MapManagerOptions {
+  double prior_resolution_m = 0.1;  ///< uniform-sampling voxel of a prior map when loaded, m
+                                    ///< (0 = keep all); finer than voxel_size_m so the ICP
+                                    ///< initializer's fitness gate (0.01 m²) is reachable
+  double update_after_s = -1.0;     ///< hybrid mode: seconds after the localization start from
+                                    ///< which scans extend the map; -1 = localization only
+  bool IsValid(std::string* why) const;
+};
+
+/// Section `localization:` — start from a prior map (ICP initializer), health, relocalization.
+struct LocalizationConfig {
+  std::string initial_guess;  ///< "x y z roll pitch yaw" (m, deg) or 16 numbers (4×4 T_world_imu,
+                              ///< row-major); empty = none (give --guess on the command line)
+  estimation::LocalizationOptions options;  ///< options.update_after_s comes from map:
+  bool IsValid(std::string* why) const;
+};
+
 /// What a run writes besides its trajectory and summary.
 struct OutputConfig {
   double dense_map_voxel_m = 0.1;  ///< voxel of map_dense.pcd (every registered scan, uniformly
                                    ///< sampled), the input of offline map crafting, m; 0 = off
+  // Frame names of the odometry outputs (odometry.csv, the ROS node), REP-105. The body is
+  // the IMU: base_frame names the IMU frame (publish a static transform for another base).
+  std::string map_frame = "map";        ///< the prior map's (or SLAM map's) frame
+  std::string odom_frame = "odom";      ///< continuous frame; relocalization jumps go to map→odom
+  std::string base_frame = "base_link"; ///< the IMU (body) frame
   bool IsValid(std::string* why) const;
 };
 
@@ -69,7 +92,8 @@ struct RunConfig {
   estimation::ImuInitializerOptions init;         ///< static IMU initialisation
   estimation::IeskfOptions ieskf;                 ///< the IESKF back-end
   registration::PlaneMatcherOptions planes;       ///< point-to-plane association
-  mapping::MapManagerOptions map;                 ///< map downsampling and local window
+  MapConfig map;                                  ///< map downsampling, window, hybrid mode
+  LocalizationConfig localization;                ///< prior-map localization
   OutputConfig output;                            ///< extra outputs of a run
 
   /// Checks every section; *why names the field (with its section), value and constraint.

@@ -11,8 +11,9 @@ namespace hylo::io {
 
 class Progress {
  public:
-  /// `total` = 0 means unknown: the count is shown without a percentage.
-  Progress(std::string label, std::size_t total);
+  /// `total` = 0 means unknown: the count is shown without a percentage. `enabled` = false
+  /// prints nothing (the elapsed time is still measured).
+  Progress(std::string label, std::size_t total, bool enabled = true);
   ~Progress();
 
   /// Reports `done` items finished. Cheap to call per item: prints at most ~5 times a second.
@@ -29,6 +30,7 @@ class Progress {
   std::size_t total_;
   std::size_t done_ = 0;
   bool tty_;
+  bool enabled_;
   bool finished_ = false;
   int last_decile_ = -1;
   std::chrono::steady_clock::time_point start_;

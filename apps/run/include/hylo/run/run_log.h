@@ -1,0 +1,52 @@
+#pragma once
+// One recorded log through the odometry pipeline, with everything a run writes: the code
+// behind `hylo map` (SLAM), `hylo localize` (prior map + guess, hybrid mode), `hylo compare`
+// and `hylo demo`, so that every back-end's run produces the same files and summary keys.
+//
+// Files written into out_dir:
+//   config.yaml      the effective configuration
+//   trajectory.tum   T_world_imu per processed scan, stamped at scan end (TUM)
+//   odometry.csv     per scan: pose, body twist, 6×6 pose and twist covariances, health
+//                    (column order documented in the file's header line)
+//   timing.csv       per-scan timing and update figures
+//   map.pcd          the final map (prior + added points, or the SLAM map), world frame
+//   map_added.pcd    hybrid mode: only the points added to the prior during the run
+//   map_dense.pcd    every registered scan at output.dense_map_voxel_m (0 = not written)
+//   summary.json     the summary returned below
+// World frame: the prior map's file frame (its local origin is added back); for SLAM the map
+// frame of the run.
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hylo/config/run_config.h"
+#include "hylo/io/json.h"
+#include "hylo/io/trajectory_io.h"
+
+namespace hylo::run {
+
+struct RunRequest {
+  std::string log;                 ///< ROS1 bag or scan folder
+  config::RunConfig config;        ///< the run's configuration (backend, sensors, ...)
+  std::string prior_map;           ///< PCD/PLY prior map; empty = SLAM from scratch
+  std::optional<Eigen::Isometry3d> guess_world_imu;  ///< T_world_imu guess at the start;
+                                   ///< required with prior_map
+  double c2c_max_distance_m = 0.5; ///< outlier threshold of the cloud-to-cloud metric, m
+  std::string out_dir;             ///< created if missing
+  std::string label = "run";       ///< progress label
+  bool show_progress = true;       ///< progress on stderr
+};
+
+struct RunResult {
+  io::Json summary;                          ///< also written to out_dir/summary.json
+  std::vector<io::StampedPose> trajectory;   ///< T_world_imu, one per processed scan
+  std::vector<double> ms_per_scan;           ///< wall time per processed scan, ms
+};
+
+/// Runs the log. Throws std::runtime_error naming the file and reason for unreadable input,
+/// a failed initialisation (vehicle moving, no accepted ICP start) or a log with no scan.
+RunResult RunLog(const RunRequest& request);
+
+}  // namespace hylo::run

@@ -1,0 +1,213 @@
+#include "hylo/run/run_log.h"
+
+#include <sys/resource.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "hylo/common/time.h"
+#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/io/cloud_io.h"
+#include "hylo/io/log_reader.h"
+#include "hylo/io/progress.h"
+#include "hylo/mapping/ikd_tree.h"
+#include "hylo/mapping/prior_map.h"
+#include "hylo/registration/cloud_distance.h"
+#include "hylo/registration/pose_guess.h"
+#include "run_outputs.h"
+
+namespace hylo::run {
+namespace {
+
+using estimation::OdometryPipeline;
+using estimation::ScanResult;
+
+registration::PointCloud ToLocal(const std::vector<Eigen::Vector3d>& points_world,
+                                 const Eigen::Vector3d& origin_world) {
+  registration::PointCloud local;
+  local.reserve(points_world.size());
+  for (const Eigen::Vector3d& p : points_world) local.push_back((p - origin_world).cast<float>());
+  return local;
+}
+
+void WriteMapFile(const std::string& path, const registration::PointCloud& points_map,
+                  const Eigen::Vector3d& origin_world) {
+  io::CloudFile file;
+  file.positions.reserve(points_map.size());
+  for (const Eigen::Vector3f& p : points_map) {
+    file.positions.push_back(p.cast<double>() + origin_world);
+  }
+  io::WriteCloud(path, file, io::CloudEncoding::kBinaryCompressed);
+}
+
+io::Json EventsJson(const std::vector<estimation::LocalizationEvent>& events,
+                    const Eigen::Vector3d& origin_world) {
+  io::Json array = io::Json::MakeArray();
+  for (const auto& e : events) {
+    io::Json j;
+    j["kind"] = estimation::ToString(e.kind);
+    j["t_s"] = NanosToSeconds(e.t_ns);
+    const Eigen::Vector3d p = e.T_map_imu.translation() + origin_world;
+    j["position_m"] = io::Json::FromNumbers({p.x(), p.y(), p.z()});
+    const Eigen::Matrix3d& R = e.T_map_imu.linear();
+    j["yaw_deg"] = std::atan2(R(1, 0), R(0, 0)) * 180.0 / M_PI;
+    if (std::isfinite(e.fitness_m2)) j["fitness_m2"] = e.fitness_m2;
+    j["inlier_ratio"] = e.inlier_ratio;
+    j["message"] = e.message;
+    array.PushBack(j);
+  }
+  return array;
+}
+
+io::Json CountersJson(const estimation::PipelineCounters& c) {
+  io::Json j;
+  j["scans_processed"] = c.scans_processed;
+  j["scans_before_init"] = c.scans_before_init;
+  j["scans_initializer"] = c.scans_initializer;
+  j["scans_too_small"] = c.scans_too_small;
+  j["scans_not_applied"] = c.scans_not_applied;
+  j["scans_degenerate"] = c.scans_degenerate;
+  j["scans_bad_health"] = c.scans_bad_health;
+  j["points_dropped_sanitize"] = c.points_dropped_sanitize;
+  j["queue"]["imu_duplicates"] = c.queue.imu_duplicates;
+  j["queue"]["imu_stale"] = c.queue.imu_stale;
+  j["queue"]["scan_duplicates"] = c.queue.scan_duplicates;
+  j["queue"]["scan_stale"] = c.queue.scan_stale;
+  j["queue"]["imu_gaps"] = c.queue.imu_gaps;
+  j["queue"]["longest_imu_gap_s"] = NanosToSeconds(c.queue.longest_imu_gap_ns);
+  return j;
+}
+
+// The paper's cloud-to-cloud metric: the registered scans against the prior map.
+io::Json CloudToCloudJson(const registration::PointCloud& registered_map,
+                          const registration::PointCloud& prior_map, double max_distance_m) {
+  mapping::IkdTree reference{mapping::IkdTree::Options()};
+  reference.Build(prior_map);
+  registration::CloudDistanceOptions options;
+  options.max_distance_m = max_distance_m;
+  const registration::CloudDistanceSummary s =
+      registration::CloudToCloudDistance(registered_map, reference, options);
+  io::Json j;
+  j["ok"] = s.ok;
+  j["mean_m"] = s.mean_m;
+  j["std_m"] = s.std_m;
+  j["median_m"] = s.median_m;
+  j["rejected_fraction"] = s.rejected_fraction;
+  j["points"] = s.num_points;
+  j["max_distance_m"] = max_distance_m;
+  if (!s.ok) j["message"] = s.message;
+  return j;
+}
+
+}  // namespace
+
+RunResult RunLog(const RunRequest& request) {
+  const config::RunConfig& config = request.config;
+  std::filesystem::create_directories(request.out_dir);
+  config::SaveRunConfig(request.out_dir + "/config.yaml", config);
+  OdometryPipeline pipeline(config.PipelineOptions());
+
+  // Prior map in a local frame near zero; everything written goes back to the world frame.
+  const bool localizing = !request.prior_map.empty();
+  Eigen::Vector3d origin_world = Eigen::Vector3d::Zero();
+  mapping::PriorMap prior;
+  if (localizing) {
+    if (!request.guess_world_imu) {
+      throw std::runtime_error("localization needs an initial guess (--guess or "
+                               "localization.initial_guess)");
+    }
+    mapping::PriorMapOptions prior_options;
+    prior_options.resolution_m = config.map.prior_resolution_m;
+    prior = mapping::BuildPriorMap(io::ReadCloud(request.prior_map).positions, prior_options,
+                                   request.prior_map);
+    origin_world = prior.origin_world;
+    pipeline.SetPriorMap(prior.points_local);
+    pipeline.SetInitialGuess(mapping::PoseToLocal(*request.guess_world_imu, origin_world));
+  }
+
+  auto log = io::OpenLog(request.log, config.LogOptions());
+  std::vector<ScanResult> results;
+  // Dense registered scans, one point per voxel (the crafting input and the c2c metric).
+  const float dense_voxel_m = static_cast<float>(config.output.dense_map_voxel_m);
+  mapping::IkdTree dense_map{mapping::IkdTree::Options()};
+  std::size_t consumed = 0;
+  auto consume_dense = [&] {
+    for (; consumed < results.size(); ++consumed) {
+      auto& points = results[consumed].registered_points_map;
+      if (dense_voxel_m > 0.f && !points.empty()) dense_map.Insert(points, dense_voxel_m);
+      registration::PointCloud().swap(points);
+    }
+  };
+  io::Progress progress(request.label, 0, request.show_progress);
+  io::LogMessage message;
+  std::size_t scans = 0;
+  while (log->Next(&message)) {
+    if (message.kind == io::LogMessage::Kind::kImu) {
+      pipeline.AddImu(message.imu);
+      continue;
+    }
+    pipeline.AddScan(std::move(message.scan));
+    pipeline.Process(&results);
+    consume_dense();
+    progress.Update(++scans);
+    if (pipeline.status() == OdometryPipeline::Status::kFailed) break;
+  }
+  pipeline.Process(&results, true);
+  consume_dense();
+  progress.Finish();
+  if (pipeline.status() == OdometryPipeline::Status::kFailed) {
+    throw std::runtime_error(request.log + ": " + pipeline.message());
+  }
+  if (results.empty()) throw std::runtime_error(request.log + ": no scan was processed");
+
+  RunResult run;
+  run.trajectory = WorldTrajectory(results, origin_world);
+  io::WriteTum(request.out_dir + "/trajectory.tum", run.trajectory);
+  WriteOdometryCsv(request.out_dir + "/odometry.csv", results, origin_world, config.output);
+  WriteTimingCsv(request.out_dir + "/timing.csv", results);
+  WriteMapFile(request.out_dir + "/map.pcd", pipeline.map().Flatten(), origin_world);
+  if (localizing && pipeline.map().run_size() > 0) {
+    WriteMapFile(request.out_dir + "/map_added.pcd", pipeline.map().FlattenRun(), origin_world);
+  }
+  const registration::PointCloud dense = dense_map.Flatten();
+  if (dense_voxel_m > 0.f) WriteMapFile(request.out_dir + "/map_dense.pcd", dense, origin_world);
+
+  double path_m = 0.0;
+  std::vector<double> cpu_ms;
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    run.ms_per_scan.push_back(results[i].total_ms);
+    cpu_ms.push_back(results[i].cpu_ms);
+    if (i > 0) path_m += (results[i].state.p_map_imu - results[i - 1].state.p_map_imu).norm();
+  }
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  io::Json& j = run.summary;
+  j["log"] = request.log;
+  j["mode"] = !localizing ? "slam" : config.map.update_after_s < 0.0 ? "localization" : "hybrid";
+  j["backend"] = config.backend;
+  j["imu"] = config.imu.enabled;
+  j["scans_processed"] = results.size();
+  j["counters"] = CountersJson(pipeline.counters());
+  j["path_length_m"] = path_m;
+  j["map_points"] = pipeline.map().Size();
+  j["map_points_added"] = pipeline.map().run_size();
+  j["ms_per_scan_median"] = Percentile(run.ms_per_scan, 0.5);
+  j["ms_per_scan_p99"] = Percentile(run.ms_per_scan, 0.99);
+  j["cpu_ms_per_scan_median"] = Percentile(cpu_ms, 0.5);
+  j["cpu_ms_per_scan_p99"] = Percentile(cpu_ms, 0.99);
+  j["peak_memory_mb"] = usage.ru_maxrss / 1024.0;
+  j["elapsed_s"] = progress.ElapsedSeconds();
+  j["origin_world"] = io::Json::FromNumbers({origin_world.x(), origin_world.y(), origin_world.z()});
+  j["events"] = EventsJson(pipeline.events(), origin_world);
+  if (localizing) {
+    j["prior_map"] = request.prior_map;
+    j["prior_map_points"] = prior.num_kept;
+    j["c2c"] = CloudToCloudJson(dense, prior.points_local, request.c2c_max_distance_m);
+  }
+  io::WriteJsonFile(request.out_dir + "/summary.json", j);
+  return run;
+}
+
+}  // namespace hylo::run

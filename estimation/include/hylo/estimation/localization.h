@@ -1,0 +1,86 @@
+#pragma once
+// Localization in a prior map (Alamanos et al., Sec. III): what the odometry pipeline adds when
+// it is given a prior map and an initial guess. The pieces are shared by every back-end:
+//  - start: the first scans (at rest, while the IMU initialises) are accumulated in the IMU
+//    frame and registered to the prior by the ICP initializer; odometry starts only from an
+//    accepted pose, never from the guess itself;
+//  - hybrid mode: after `update_after_s` seconds of localization, registered scans are added
+//    to the map (the run's tree, beside the never-windowed prior), so changed or unexplored
+//    parts of the site extend the map aligned with the prior;
+//  - health: per scan, the fitness (mean squared distance of the registered scan to the map),
+//    the inlier ratio and the number of plane matches; `lost_after_scans` bad scans in a row
+//    (or a user request) start a relocalization: the initializer runs around the current pose.
+//    Each event is recorded for the run's summary.
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <limits>
+#include <string>
+
+#include "hylo/registration/icp_initializer.h"
+#include "hylo/registration/neighbor_search.h"
+#include "hylo/registration/point_types.h"
+
+namespace hylo::estimation {
+
+struct LocalizationOptions {
+  int init_scans = 10;            ///< static scans accumulated for the ICP initializer (with an
+                                  ///< IMU; without one only the first scan is used), >= 1
+  double update_after_s = -1.0;   ///< hybrid mode: seconds after the start of localization
+                                  ///< from which scans are added to the map; -1 = never
+                                  ///< (localization only), else >= 0
+  registration::IcpInitializerOptions icp;  ///< start and relocalization
+
+  // --- health, computed on every scan after the update ---
+  double health_inlier_distance_m = 0.3;  ///< a registered point is an inlier when a map point
+                                          ///< lies within this, m, > 0
+  double health_max_range_m = 1.0;        ///< farther points are left out of the fitness, m,
+                                          ///< >= health_inlier_distance_m
+  int health_max_points = 300;            ///< points checked per scan (even stride), >= 10
+  double min_inlier_ratio = 0.5;          ///< below this a scan is bad, [0, 1]
+  int min_matches = 50;                   ///< fewer plane matches: the scan is bad, >= 0
+  int lost_after_scans = 5;               ///< bad scans in a row before relocalizing, >= 1
+  int relocalize_retry_scans = 10;        ///< scans between two failed relocalizations, >= 1
+
+  bool IsValid(std::string* why) const;
+};
+
+/// How well one registered scan fits the map (after the update).
+struct ScanHealth {
+  double fitness_m2 = std::numeric_limits<double>::quiet_NaN();  ///< mean squared NN distance of
+                                      ///< the checked points within health_max_range_m, m²
+  double inlier_ratio = 0.0;          ///< checked points with a map point within
+                                      ///< health_inlier_distance_m, [0, 1]
+  std::size_t num_matches = 0;        ///< plane matches of the update
+  bool good = false;                  ///< passes min_inlier_ratio and min_matches
+};
+
+/// Something the localizer decided, for the run's summary and the ROS health topic.
+struct LocalizationEvent {
+  enum class Kind {
+    kInitialized,            ///< the ICP initializer accepted a start pose
+    kInitializationFailed,   ///< no start pose passed the gates: no odometry
+    kLost,                   ///< lost_after_scans bad scans in a row
+    kRelocalized,            ///< a relocalization was accepted (pose reset)
+    kRelocalizationFailed,   ///< ... was rejected (retried later)
+    kHybridStarted,          ///< scans are now added to the map
+  };
+  Kind kind = Kind::kInitialized;
+  int64_t t_ns = 0;                         ///< scan end time of the decision, ns
+  Eigen::Isometry3d T_map_imu = Eigen::Isometry3d::Identity();  ///< pose after the event
+  double fitness_m2 = std::numeric_limits<double>::quiet_NaN();  ///< initializer fitness, m²
+  double inlier_ratio = 0.0;                ///< initializer inlier ratio
+  std::string message;                      ///< one line, why
+};
+
+/// The health of a scan registered into the map frame (`points_map`, taken before the scan
+/// itself is added to `map`), given the update's plane matches.
+ScanHealth EvaluateScanHealth(const registration::PointCloud& points_map,
+                              const registration::NeighborSearch& map, std::size_t num_matches,
+                              const LocalizationOptions& options);
+
+/// "initialized", "initialization_failed", "lost", "relocalized", "relocalization_failed",
+/// "hybrid_started".
+std::string ToString(LocalizationEvent::Kind kind);
+
+}  // namespace hylo::estimation

@@ -1,0 +1,130 @@
+#pragma once
+// Localization on the simulator: a prior map built by SLAM on session A (dense registered
+// scans, as `hylo map` writes map_dense.pcd), then session B streamed into a localizing
+// pipeline. Everything stays in memory; each run re-simulates its session (memory stays flat).
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <Eigen/Geometry>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "estimation/sim_odometry_util.h"
+#include "hylo/mapping/ikd_tree.h"
+#include "hylo/sim/site_layout.h"
+
+namespace hylo::testing {
+
+/// Streams a session into a pipeline (configured by the caller, e.g. with a prior map) and
+/// folds each result's registered scan into a dense map (one point per dense_voxel_m voxel).
+class LocalizationSink : public sim::SessionSink {
+ public:
+  LocalizationSink(const estimation::OdometryPipelineOptions& options, float dense_voxel_m)
+      : pipeline(options), dense_voxel_m_(dense_voxel_m) {}
+
+  void OnImu(const estimation::ImuSample& s) override { pipeline.AddImu(s); }
+  void OnScan(const estimation::LidarScan& s) override {
+    if (before_scan) before_scan(scans_seen_, &pipeline);
+    ++scans_seen_;
+    pipeline.AddScan(s);
+    Consume(false);
+  }
+  void OnTruth(const sim::TruthSample& t) override { truth.push_back({t.t_ns, t.T_map_imu}); }
+  void Finish() { Consume(true); }
+
+  /// T_map_imu per processed scan.
+  std::vector<estimation::TimedPose> Estimate() const {
+    std::vector<estimation::TimedPose> estimate;
+    for (const auto& r : results) {
+      estimate.push_back({r.t_ns, Eigen::Isometry3d(r.state.T_map_imu().Matrix())});
+    }
+    return estimate;
+  }
+
+  estimation::OdometryPipeline pipeline;
+  std::vector<estimation::ScanResult> results;  // registered points moved into `dense`
+  std::vector<estimation::TimedPose> truth;     // T_site_imu at the IMU rate
+  mapping::IkdTree dense{mapping::IkdTree::Options()};
+  /// Called before the scan with this index enters the pipeline (e.g. a relocalization).
+  std::function<void(std::size_t, estimation::OdometryPipeline*)> before_scan;
+
+ private:
+  void Consume(bool flush) {
+    const std::size_t first = results.size();
+    pipeline.Process(&results, flush);
+    for (std::size_t i = first; i < results.size(); ++i) {
+      auto& points = results[i].registered_points_map;
+      if (!points.empty()) dense.Insert(points, dense_voxel_m_);
+      registration::PointCloud().swap(points);
+    }
+  }
+
+  float dense_voxel_m_;
+  std::size_t scans_seen_ = 0;
+};
+
+/// Session A mapped by SLAM: the dense map in A's map frame and where that frame lies on the
+/// site (from A's first pose against the truth).
+struct SimPrior {
+  registration::PointCloud points_map;
+  Eigen::Isometry3d T_site_map = Eigen::Isometry3d::Identity();
+  estimation::AteResult slam_ate;
+};
+
+inline SimPrior BuildSimPrior(const sim::SimulationOptions& sim_options, const sim::Site& site) {
+  estimation::OdometryPipelineOptions options = PipelineOptionsFor(sim_options);
+  options.registered_scan_voxel_m = 0.1;
+  LocalizationSink sink(options, 0.1f);
+  sim::SessionSimulator(sim_options, site, sim::SessionId::kA).Run(&sink);
+  sink.Finish();
+  SimPrior prior;
+  prior.points_map = sink.dense.Flatten();
+  const std::vector<estimation::TimedPose> estimate = sink.Estimate();
+  if (estimate.empty()) return prior;
+  Eigen::Isometry3d T_site_imu;
+  if (estimation::InterpolatePose(sink.truth, estimate.front().t_ns, &T_site_imu)) {
+    prior.T_site_map = T_site_imu * estimate.front().T_world_body.inverse();
+  }
+  prior.slam_ate = estimation::ComputeAte(estimate, sink.truth);
+  return prior;
+}
+
+/// BuildSimPrior through a file cache in `cache_path`: ctest runs every test case in its own
+/// process, and SLAM on session A (~40 s of CPU) should run once per build, not per case.
+/// An exclusive lock makes concurrent cases wait for the first one instead of repeating it.
+inline SimPrior CachedSimPrior(const sim::SimulationOptions& sim_options, const sim::Site& site,
+                               const std::string& cache_path) {
+  const int lock = ::open((cache_path + ".lock").c_str(), O_CREAT | O_RDWR, 0644);
+  if (lock >= 0) ::flock(lock, LOCK_EX);
+  SimPrior prior;
+  std::ifstream in(cache_path, std::ios::binary);
+  uint64_t n = 0;
+  if (in && in.read(reinterpret_cast<char*>(&n), sizeof(n))) {
+    prior.points_map.resize(n);
+    in.read(reinterpret_cast<char*>(prior.T_site_map.matrix().data()), 16 * sizeof(double));
+    in.read(reinterpret_cast<char*>(&prior.slam_ate.rmse_m), sizeof(double));
+    in.read(reinterpret_cast<char*>(prior.points_map.data()), n * sizeof(Eigen::Vector3f));
+    if (!in) prior = SimPrior();
+  }
+  if (prior.points_map.empty()) {
+    prior = BuildSimPrior(sim_options, site);
+    const std::string tmp = cache_path + ".tmp";
+    std::ofstream out(tmp, std::ios::binary);
+    n = prior.points_map.size();
+    out.write(reinterpret_cast<const char*>(&n), sizeof(n));
+    out.write(reinterpret_cast<const char*>(prior.T_site_map.matrix().data()), 16 * sizeof(double));
+    out.write(reinterpret_cast<const char*>(&prior.slam_ate.rmse_m), sizeof(double));
+    out.write(reinterpret_cast<const char*>(prior.points_map.data()), n * sizeof(Eigen::Vector3f));
+    out.close();
+    if (out) std::rename(tmp.c_str(), cache_path.c_str());
+  }
+  if (lock >= 0) ::close(lock);  // releases the lock
+  return prior;
+}
+
+}  // namespace hylo::testing
