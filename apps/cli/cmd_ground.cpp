@@ -17,6 +17,7 @@ struct GroundArgs {
   std::string in_path, ground_path, objects_path, json_path;
   mapping::ClothFilterOptions options;
   bool no_slope_smoothing = false;
+  bool vertical_distance = false;
 };
 
 io::Json SummaryJson(const GroundArgs& args, const mapping::ClothFilterResult& r, double seconds) {
@@ -31,6 +32,7 @@ io::Json SummaryJson(const GroundArgs& args, const mapping::ClothFilterResult& r
   opt["time_step"] = o.time_step;
   opt["max_iterations"] = o.max_iterations;
   opt["class_threshold_m"] = o.class_threshold_m;
+  opt["class_distance_along_normal"] = o.class_distance_along_normal;
   opt["slope_smoothing"] = o.slope_smoothing;
   opt["slope_height_threshold_m"] = o.slope_height_threshold_m;
   opt["slope_min_region_particles"] = o.slope_min_region_particles;
@@ -73,6 +75,7 @@ io::CloudFile Select(const io::CloudFile& cloud, const mapping::ClothFilterResul
 
 void RunGround(GroundArgs& args) {
   args.options.slope_smoothing = !args.no_slope_smoothing;
+  args.options.class_distance_along_normal = !args.vertical_distance;
   std::string why;
   if (!args.options.IsValid(&why)) throw std::invalid_argument(why);
   std::fprintf(stderr, "reading %s\n", args.in_path.c_str());
@@ -113,6 +116,9 @@ void AddGroundCommand(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--threshold", o.class_threshold_m, "ground if closer to the cloth, m (hcc)")
       ->capture_default_str();
+  cmd->add_flag("--vertical-distance", args.vertical_distance,
+                "classify by the vertical gap to the cloth (the original CSF code) instead of "
+                "the distance to the cloth surface");
   cmd->add_flag("--no-slope-smoothing", args.no_slope_smoothing,
                 "skip the steep-slope post-processing (ST)");
   cmd->add_option("--slope-threshold", o.slope_height_threshold_m,

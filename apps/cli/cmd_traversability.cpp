@@ -17,6 +17,7 @@ namespace {
 struct TraversabilityArgs {
   std::string ground_path, objects_path, out_dir, json_path;
   mapping::TraversabilityOptions options;
+  bool no_cell_grade = false;
 };
 
 io::Json OptionsJson(const mapping::TraversabilityOptions& o) {
@@ -29,6 +30,7 @@ io::Json OptionsJson(const mapping::TraversabilityOptions& o) {
   j["max_slope_deg"] = o.cost.max_slope_deg;
   j["max_step_m"] = o.cost.max_step_m;
   j["max_roughness_m"] = o.cost.max_roughness_m;
+  j["lethal_on_cell_grade"] = o.cost.lethal_on_cell_grade;
   j["free_cost_max"] = o.cost.free_cost_max;
   j["obstacle_min_height_m"] = o.cost.obstacle_min_height_m;
   j["obstacle_max_height_m"] = o.cost.obstacle_max_height_m;
@@ -129,11 +131,17 @@ void AddTraversabilityCommand(CLI::App& root) {
   cmd->add_option("--max-step", cost.max_step_m, "vehicle limit, m")->capture_default_str();
   cmd->add_option("--max-roughness", cost.max_roughness_m, "vehicle limit, m")
       ->capture_default_str();
+  cmd->add_flag("--no-cell-grade", args.no_cell_grade,
+                "do not mark cells lethal from the cell-scale elevation gradient (only the "
+                "footprint slope, step and roughness)");
   cmd->add_option("--max-hole", args.options.elevation.max_hole_size_m,
                   "fill enclosed holes up to this width, m (0: none)")
       ->capture_default_str();
   cmd->add_option("--json", args.json_path, "write a JSON summary here");
-  cmd->callback([] { Run(args); });
+  cmd->callback([] {
+    args.options.cost.lethal_on_cell_grade = !args.no_cell_grade;
+    Run(args);
+  });
 }
 
 }  // namespace hylo::cli

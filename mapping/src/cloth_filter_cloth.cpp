@@ -154,4 +154,12 @@ double Cloth::HeightAt(const Eigen::Vector2d& xy) const {
   return (1 - fy) * ((1 - fx) * h00 + fx * h10) + fy * ((1 - fx) * h01 + fx * h11);
 }
 
+Eigen::Vector2d Cloth::GradientAt(const Eigen::Vector2d& xy) const {
+  const double h = 0.5 * grid_.resolution_m;
+  const Eigen::Vector2d dx(h, 0.0), dy(0.0, h);
+  return Eigen::Vector2d(HeightAt(xy + dx) - HeightAt(xy - dx),
+                         HeightAt(xy + dy) - HeightAt(xy - dy)) /
+         (2.0 * h);
+}
+
 }  // namespace hylo::mapping::cloth

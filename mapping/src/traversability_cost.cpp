@@ -38,6 +38,30 @@ float GroundHeight(const GridGeometry& g, const std::vector<float>& elevation, i
   return kNoData;
 }
 
+// Gradient of the elevation along one axis at a cell: the central difference when the cell
+// and both neighbours have an elevation, else 0 (m per m). One-sided differences are left
+// out: over a single cell the noise of two sparse cells' elevations alone can pass the limit.
+double AxisGradient(const GridGeometry& g, const std::vector<float>& elevation, int col, int row,
+                    int dc, int dr) {
+  const auto at = [&](int c, int r) {
+    return g.Contains(c, r) ? elevation[g.Index(c, r)] : kNoData;
+  };
+  const float here = at(col, row), ahead = at(col + dc, row + dr), behind = at(col - dc, row - dr);
+  if (std::isnan(here) || std::isnan(ahead) || std::isnan(behind)) return 0.0;
+  return (ahead - behind) / (2.0 * g.resolution_m);
+}
+
+// Slope of the elevation layer at the cell's own scale, deg. The plane fit over the vehicle
+// footprint smooths a bank narrower than the footprint below the limit; the cell-scale
+// gradient still sees it.
+double CellGradeDeg(const GridGeometry& g, const std::vector<float>& elevation,
+                    std::size_t cell) {
+  const int col = g.Col(cell), row = g.Row(cell);
+  const double gx = AxisGradient(g, elevation, col, row, 1, 0);
+  const double gy = AxisGradient(g, elevation, col, row, 0, 1);
+  return std::atan(std::hypot(gx, gy)) * 180.0 / M_PI;
+}
+
 }  // namespace
 
 const char* CellClassName(CellClass cell_class) {
@@ -88,6 +112,8 @@ std::vector<CellClass> ComputeCost(const CostOptions& options, GridMap* grid) {
   const std::vector<float>& slope = grid->Layer(layers::kSlope);
   const std::vector<float>& roughness = grid->Layer(layers::kRoughness);
   const std::vector<float>& step = grid->Layer(layers::kStep);
+  const std::vector<float>& elevation = grid->Layer(layers::kElevation);
+  const GridGeometry& g = grid->geometry();
   std::vector<float>& cost = grid->AddLayer(layers::kCost, kNoData);
   std::vector<float>& class_layer = grid->AddLayer(layers::kClass, 0.f);
   const double weight_sum = options.slope_weight + options.step_weight + options.roughness_weight;
@@ -97,7 +123,9 @@ std::vector<CellClass> ComputeCost(const CostOptions& options, GridMap* grid) {
     const double s = slope[cell] / options.max_slope_deg;
     const double r = roughness[cell] / options.max_roughness_m;
     const double h = step[cell] / options.max_step_m;
-    if (s > 1.0 || r > 1.0 || h > 1.0) {
+    const bool steep_grade = options.lethal_on_cell_grade &&
+                             CellGradeDeg(g, elevation, cell) > options.max_slope_deg;
+    if (s > 1.0 || r > 1.0 || h > 1.0 || steep_grade) {
       cost[cell] = 1.f;
       classes[cell] = CellClass::kLethal;
     } else {

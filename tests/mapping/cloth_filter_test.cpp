@@ -21,12 +21,18 @@ namespace hylo::mapping {
 namespace {
 
 // Regression bounds on the ISPRS mean total error over the 7 samples, %. One parameter set for
-// all samples (no per-file tuning). Measured: 7.19 with the defaults (RI 3) and 6.71 with RI 1
-// (the paper's setting for rugged terrain); the paper reports 4.38 for these 7 samples with
-// GR/RI/ST chosen per sample. The bounds sit ~10 % above the measured figures so that a change
-// making the filter worse fails, without flapping on harmless reorderings.
-constexpr double kIsprsMeanTotalBoundDefaultsPercent = 8.0;
-constexpr double kIsprsMeanTotalBoundRuggedPercent = 7.4;
+// all samples (no per-file tuning). Measured: 6.59 with the defaults (RI 3) and 6.19 with RI 1
+// (the paper's setting for rugged terrain); 7.19 / 6.71 before the distance to the cloth was
+// measured to its surface instead of vertically. The paper reports 4.38 for these 7 samples
+// with GR/RI/ST chosen per sample. Where the rest comes from (type I / type II per sample, see
+// the printed table): samp11 type I on its steep slope and samp61 type I along narrow
+// embankments (ridges the rigid cloth bridges), samp41 type I in courtyards enclosed by
+// buildings (the cloth cannot drop into them), samp52 type I where the data ends on a slope
+// plus type II from low vegetation, samp21 type II from the bridge the slope post-processing
+// pins to the road. The bounds sit ~10 % above the measured figures so that a change making
+// the filter worse fails, without flapping on harmless reorderings.
+constexpr double kIsprsMeanTotalBoundDefaultsPercent = 7.3;
+constexpr double kIsprsMeanTotalBoundRuggedPercent = 6.8;
 // Agreement with the reference implementation's split of csf_sample when run as that release
 // runs (its hole filling and its dT^2-twice gravity). Target 98 %; measured 99.65 %.
 constexpr double kCsfSampleMinAgreement = 0.99;
@@ -146,6 +152,43 @@ TEST(ClothFilter, BuildingsOnASteppedTerrainAreObjects) {
   const Agreement agreement = Compare(cloud, result);
   EXPECT_GE(agreement.ground_kept, 0.98) << result.message;
   EXPECT_GE(agreement.objects_removed, 0.99) << result.message;
+}
+
+// Points 0.55 m above the terrain (vertically) are 0.55 m from a flat cloth but only
+// 0.55 cos(35 deg) = 0.45 m from a cloth on a 35 deg slope: within hcc 0.5 measured to the
+// cloth surface, beyond it measured vertically. The terrain is a lattice on the cloth's
+// particles (GR 0.3 m, a rise of 0.21 m per particle that the slope post-processing follows),
+// so the settled cloth is the plane itself and only the distance rule decides.
+TEST(ClothFilter, DistanceToTheClothIsMeasuredToItsSurface) {
+  constexpr float kGr = 0.3f;
+  for (const float slope_deg : {0.f, 35.f}) {
+    const float tan_slope = std::tan(slope_deg * 3.14159265f / 180.f);
+    registration::PointCloud points;
+    for (int i = 0; i <= 60; ++i) {
+      for (int j = 0; j <= 60; ++j) points.emplace_back(kGr * i, kGr * j, tan_slope * kGr * i);
+    }
+    const std::size_t num_terrain = points.size();
+    for (float x = 1.05f; x < 17.f; x += 1.5f) {
+      for (float y = 1.05f; y < 17.f; y += 1.5f) points.emplace_back(x, y, tan_slope * x + 0.55f);
+    }
+    for (const bool along_normal : {true, false}) {
+      ClothFilterOptions options;
+      options.cloth_resolution_m = kGr;
+      options.class_distance_along_normal = along_normal;
+      const ClothFilterResult result = FilterGroundLocal(points, options);
+      ASSERT_TRUE(result.ok) << result.message;
+      std::size_t terrain_ground = 0, raised_ground = 0;
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const bool ground = result.labels[i] == GroundLabel::kGround;
+        (i < num_terrain ? terrain_ground : raised_ground) += ground;
+      }
+      const std::size_t num_raised = points.size() - num_terrain;
+      EXPECT_EQ(terrain_ground, num_terrain) << slope_deg << " deg";
+      const bool expect_ground = along_normal && slope_deg > 30.f;
+      EXPECT_EQ(raised_ground, expect_ground ? num_raised : 0u)
+          << slope_deg << " deg, along normal " << along_normal;
+    }
+  }
 }
 
 TEST(ClothFilter, EmptyAndAllNanCloudsAreReportedNotClassified) {
@@ -302,7 +345,8 @@ TEST(ClothFilterIsprs, ErrorsPerSampleNextToThePublishedOnes) {
 // The reference implementation's split of csf_sample (rigidness 3, slope smoothing, GR 1,
 // hcc 0.5, 500 iterations, dT 0.65 = the defaults), run with the two reference-release
 // behaviours that our defaults deliberately do not follow (see ClothFilterOptions): the row/
-// column hole filling and gravity scaled by dT^2 twice. With our defaults it agrees 97.6 %.
+// column hole filling, gravity scaled by dT^2 twice and the vertical point-to-cloth distance.
+// With our defaults it agrees 97.6 %.
 TEST(ClothFilterCsfSample, AgreesWithTheReferenceSplit) {
   HYLO_REQUIRE_DATA("csf_sample/sample.ply");
   const io::CloudFile cloud = io::ReadCloud(testing::DataPath("csf_sample/sample.ply"));
@@ -321,6 +365,7 @@ TEST(ClothFilterCsfSample, AgreesWithTheReferenceSplit) {
   options.max_iterations = 500;
   options.time_step = 0.65;
   options.reference_hole_fill = true;
+  options.class_distance_along_normal = false;
   options.gravity = 0.2 * options.time_step * options.time_step;
   const ClothFilterResult result = FilterGround(cloud.positions, options);
   ASSERT_TRUE(result.ok) << result.message;

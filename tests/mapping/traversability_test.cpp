@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -147,6 +148,43 @@ TEST(Traversability, StepIsLethalAlongItsEdgeOnly) {
   EXPECT_GT(edge, 60u);
   EXPECT_EQ(edge_lethal, edge);
   EXPECT_GE(far_free, 0.99 * far);
+}
+
+// A bank one cell wide at 40 deg between two flats: its rise (0.21 m over 0.25 m, split over
+// the cells it straddles) stays near the step limit and the footprint plane fit (0.5 m radius)
+// mixes it with the flats; the cell-scale grade must mark the cells on it. The flats stay free.
+TEST(Traversability, NarrowBankIsLethalThroughTheCellGrade) {
+  const double width_m = 0.25;
+  const double tan40 = std::tan(40.0 * kDegToRad);
+  const Terrain bank{[=](double x, double) { return tan40 * std::clamp(x, 0.0, width_m); },
+                     [=](double x, double) {
+                       return Eigen::Vector2d(x >= 0.0 && x < width_m ? tan40 : 0.0, 0.0);
+                     }};
+  const Points ground = SampleLikeLidar(bank, 6.0, 200000, 0.01, Eigen::Vector3d::Zero(), 12);
+  for (const bool use_grade : {true, false}) {
+    TraversabilityOptions options = TestOptions();
+    options.cost.lethal_on_cell_grade = use_grade;
+    const TraversabilityMap map = ComputeTraversability(ground, {}, options);
+    const GridGeometry& g = map.grid.geometry();
+    std::size_t on_bank = 0, on_bank_lethal = 0, flat = 0, flat_free = 0;
+    for (std::size_t c = 0; c < g.NumCells(); ++c) {
+      if (map.classes[c] == CellClass::kUnknown) continue;
+      const Eigen::Vector2d xy = g.CentreWorld(g.Col(c), g.Row(c));
+      if (std::abs(xy.y()) > 5.5) continue;  // sparse border cells
+      if (xy.x() > 0.0 && xy.x() < width_m) {
+        ++on_bank;
+        on_bank_lethal += map.classes[c] == CellClass::kLethal;
+      } else if (xy.x() < -1.0 || xy.x() > 1.5) {
+        ++flat;
+        flat_free += map.classes[c] == CellClass::kFree;
+      }
+    }
+    std::printf("bank, cell grade %s: %zu/%zu bank cells lethal, %zu/%zu flat cells free\n",
+                use_grade ? "on" : "off", on_bank_lethal, on_bank, flat_free, flat);
+    ASSERT_GT(on_bank, 30u);
+    EXPECT_GE(flat_free, 0.99 * flat);
+    if (use_grade) EXPECT_GE(on_bank_lethal, 0.95 * on_bank);
+  }
 }
 
 TEST(Traversability, RoughnessMatchesVerticalNoise) {

@@ -82,8 +82,12 @@ TEST_F(SiteMappingTest, GroundLabelsAgreeWithTheHitSurfaces) {
 // of the squared error sits on trench walls and bank edges steeper than 30 deg, which the
 // one-cell truth resolves and a footprint-scale fit smooths; against the clean terrain's slope
 // at the footprint scale the RMSE is 2.9 deg. Full session: 3.45 deg, 93.9 % marked, 3 steep
-// cells unknown, 1.78 deg at the footprint scale. Neither issue bound is met here, so neither
-// is asserted; these guard the figures against regressions.
+// cells unknown, 1.78 deg at the footprint scale. Since cells whose cell-scale grade exceeds
+// the limit are lethal too (CostOptions::lethal_on_cell_grade): 89.2 % marked here, 95.1 % on
+// the full session (the issue's bound met there, not on this short run); most steep cells
+// still missed border a cell without ground points (the occluded side of a trench wall), where
+// no central difference exists. The RMSE bound is not met here, so it is not asserted; these
+// guard the figures against regressions.
 TEST_F(SiteMappingTest, SlopeFollowsTheTrueSlopeGrid) {
   const SlopeFigures& s = figures_->slope_truth;
   for (const SlopeFigures* f : {&figures_->slope_truth, &figures_->slope_csf}) {

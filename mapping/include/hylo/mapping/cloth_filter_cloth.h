@@ -54,6 +54,10 @@ class Cloth {
   /// (clamped to the grid).
   double HeightAt(const Eigen::Vector2d& xy) const;
 
+  /// Horizontal gradient of HeightAt (m per m), by central differences half a particle
+  /// spacing either side of `xy`.
+  Eigen::Vector2d GradientAt(const Eigen::Vector2d& xy) const;
+
   const ClothGrid& grid() const { return grid_; }
   const std::vector<double>& heights() const { return height_; }
   bool IsMovable(std::size_t index) const { return movable_[index] != 0; }

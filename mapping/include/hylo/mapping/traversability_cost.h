@@ -27,6 +27,12 @@ struct CostOptions {
   double max_slope_deg = 20.0;          ///< vehicle limit: cells steeper than this are lethal, deg
   double max_step_m = 0.2;              ///< vehicle limit: higher steps are lethal, m
   double max_roughness_m = 0.1;         ///< vehicle limit: rougher cells are lethal, m
+  bool lethal_on_cell_grade = true;     ///< also lethal when the elevation gradient at the
+                                        ///< cell's own scale (central differences to the
+                                        ///< neighbouring cells) exceeds max_slope_deg: a bank
+                                        ///< narrower than the footprint plane fit
+                                        ///< (SurfaceOptions::normal_radius_m) is not smoothed
+                                        ///< away
   double slope_weight = 0.5;            ///< weight of slope / max_slope in the cost (>= 0)
   double step_weight = 0.25;            ///< weight of step / max_step in the cost (>= 0)
   double roughness_weight = 0.25;       ///< weight of roughness / max_roughness (>= 0); the three
@@ -57,7 +63,8 @@ struct ObstacleSummary {
 
 /// Writes layers::kCost (0..1, NaN = unknown) and layers::kClass, and returns the classes.
 /// Needs kSlope, kRoughness and kStep (ComputeSurfaceLayers). A cell whose slope, roughness
-/// or step exceeds its limit is lethal (cost 1); otherwise cost = weighted mean of the three
+/// or step exceeds its limit, or whose cell-scale grade exceeds max_slope_deg (with
+/// lethal_on_cell_grade), is lethal (cost 1); otherwise cost = weighted mean of the three
 /// normalised values.
 std::vector<CellClass> ComputeCost(const CostOptions& options, GridMap* grid);
 
