@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "hylo/estimation/ieskf.h"
+#include "hylo/estimation/sliding_window.h"
 
 namespace hylo::estimation {
 namespace {
@@ -65,6 +66,10 @@ bool Estimator::Options::IsValid(std::string* why) const {
     if (why != nullptr) *why = "ieskf." + inner;
     return false;
   }
+  if (!sliding_window.IsValid(&inner)) {
+    if (why != nullptr) *why = "sliding_window." + inner;
+    return false;
+  }
   return true;
 }
 
@@ -73,7 +78,7 @@ std::unique_ptr<Estimator> Estimator::Create(const Options& options) {
     case Backend::kIeskf:
       return std::make_unique<Ieskf>(options);
     case Backend::kSlidingWindow:
-      break;
+      return std::make_unique<SlidingWindow>(options);
   }
   throw std::invalid_argument("estimator back-end '" + ToString(options.backend) +
                               "' is not available in this build");

@@ -55,19 +55,7 @@ void Ieskf::TrimImu(int64_t t_ns) {
 }
 
 NavState Ieskf::PredictAt(int64_t t_ns) const {
-  NavState x = state_;
-  if (t_ns <= state_.t_ns) return x;
-  if (!options_.use_imu) {
-    const double dt = NanosToSeconds(t_ns - state_.t_ns);
-    x.R_map_imu = x.R_map_imu * lie::SO3d::Exp(omega_cv_imu_ * dt);
-    x.p_map_imu += x.v_map_imu * dt;
-  } else if (!imu_.empty()) {
-    for (const ImuInterval& in : MakeIntervals(imu_, state_.t_ns, t_ns)) {
-      x = PropagateNominal(x, in);
-    }
-  }
-  x.t_ns = t_ns;
-  return x;
+  return PredictNominal(state_, imu_, options_.use_imu, omega_cv_imu_, t_ns);
 }
 
 void Ieskf::Propagate(int64_t t_ns) {

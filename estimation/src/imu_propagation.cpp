@@ -99,4 +99,19 @@ std::vector<ImuInterval> MakeIntervals(const std::vector<ImuSample>& samples, in
   return intervals;
 }
 
+NavState PredictNominal(const NavState& x0, const std::vector<ImuSample>& imu, bool use_imu,
+                        const Eigen::Vector3d& omega_cv_imu, int64_t t_ns) {
+  NavState x = x0;
+  if (t_ns <= x0.t_ns) return x;
+  if (!use_imu) {
+    const double dt = NanosToSeconds(t_ns - x0.t_ns);
+    x.R_map_imu = x.R_map_imu * lie::SO3d::Exp(omega_cv_imu * dt);
+    x.p_map_imu += x.v_map_imu * dt;
+  } else if (!imu.empty()) {
+    for (const ImuInterval& in : MakeIntervals(imu, x0.t_ns, t_ns)) x = PropagateNominal(x, in);
+  }
+  x.t_ns = t_ns;
+  return x;
+}
+
 }  // namespace hylo::estimation

@@ -19,20 +19,34 @@ Eigen::Isometry3d ToIsometry(const io::StampedPose& p) {
   return T;
 }
 
-// Issue 5's target is 2 cm / 0.2 deg RMSE; it is NOT met yet: measured 0.053 m / 1.87 deg
-// (scans 8 and 19, with large hand-held rotations, do not converge; the others drift by
+// One case per back-end. Issue 5's target is 2 cm / 0.2 deg RMSE; it is NOT met yet:
+// measured IESKF 0.053 m / 1.87 deg, smoother 0.076 m / 2.56 deg (the same scans, 8, 9, 11,
+// 12 and 19, with large hand-held rotations, do not converge in either; the others drift by
 // 1.5-4 cm). The bounds below guard what works today against regressions; the per-scan
 // figures are printed on every run.
-TEST(BalmScansNoImu, PosesStayNearTheReferenceTargetNotYetMet) {
+struct BalmCase {
+  Estimator::Backend backend;
+  double max_rmse_m, max_rmse_deg;  // regression guards, not the target
+};
+
+class BalmScansNoImu : public ::testing::TestWithParam<BalmCase> {};
+
+TEST_P(BalmScansNoImu, PosesStayNearTheReferenceTargetNotYetMet) {
   HYLO_REQUIRE_DATA("balm_scans/poses.csv");
   const std::string dir = hylo::testing::DataPath("balm_scans");
   OdometryPipelineOptions options;
+  options.estimator.backend = GetParam().backend;
   options.estimator.use_imu = false;
   options.preprocess.scan_voxel_m = 0.3f;
   options.map.voxel_size_m = 0.3f;
   // A hand-held sensor sampled at 2 Hz turns up to ~30 deg between scans (poses.csv).
   options.estimator.ieskf.no_imu_yaw_search_deg = 60.0;
   options.estimator.ieskf.max_iterations = 10;
+  options.estimator.sliding_window.no_imu_yaw_search_deg = 60.0;
+  options.estimator.sliding_window.max_iterations = 10;
+  // As many plane searches per scan as the IESKF's 10 iterations; no wall-time cut in a test.
+  options.estimator.sliding_window.association_rounds = 10;
+  options.estimator.sliding_window.max_solver_time_s = 10.0;
   OdometryPipeline pipeline(options);
   io::LogReadOptions read;
   read.imu_topic.clear();
@@ -71,10 +85,17 @@ TEST(BalmScansNoImu, PosesStayNearTheReferenceTargetNotYetMet) {
   }
   const double rmse_m = std::sqrt(sum_sq_m / compared);
   const double rmse_deg = std::sqrt(sum_sq_deg / compared);
-  std::printf("balm_scans, %zu scans: RMSE %.4f m, %.4f deg\n", compared, rmse_m, rmse_deg);
-  EXPECT_LE(rmse_m, 0.08);
-  EXPECT_LE(rmse_deg, 2.5);
+  std::printf("%s, balm_scans, %zu scans: RMSE %.4f m, %.4f deg\n",
+              ToString(GetParam().backend).c_str(), compared, rmse_m, rmse_deg);
+  EXPECT_LE(rmse_m, GetParam().max_rmse_m);
+  EXPECT_LE(rmse_deg, GetParam().max_rmse_deg);
 }
+
+INSTANTIATE_TEST_SUITE_P(
+    Backends, BalmScansNoImu,
+    ::testing::Values(BalmCase{Estimator::Backend::kIeskf, 0.08, 2.5},
+                      BalmCase{Estimator::Backend::kSlidingWindow, 0.10, 3.0}),
+    [](const auto& info) { return ToString(info.param.backend); });
 
 }  // namespace
 }  // namespace hylo::estimation

@@ -89,6 +89,7 @@ bool RunConfig::IsValid(std::string* why) const {
          SectionValid(T_imu_lidar, "T_imu_lidar", why) &&
          SectionValid(preprocess, "preprocess", why) && SectionValid(init, "init", why) &&
          SectionValid(ieskf, "ieskf", why) &&
+         SectionValid(sliding_window, "sliding_window", why) &&
          SectionValid(planes, "planes", why) &&
          SectionValid(map, "map", why) && SectionValid(localization, "localization", why) &&
          SectionValid(output, "output", why);
@@ -143,6 +144,7 @@ estimation::OdometryPipelineOptions RunConfig::PipelineOptions() const {
   o.estimator.use_imu = imu.enabled;
   o.estimator.imu_noise = imu.noise;
   o.estimator.ieskf = ieskf;
+  o.estimator.sliding_window = sliding_window;
   o.gravity_mps2 = imu.gravity_mps2;
   o.init = init;
   // A gap is five missing samples at the nominal rate.

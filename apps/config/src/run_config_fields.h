@@ -82,6 +82,26 @@ void VisitFields(V& v, estimation::IeskfOptions& o) {
 }
 
 template <class V>
+void VisitFields(V& v, estimation::SlidingWindowOptions& o) {
+  v("window_size", o.window_size);
+  v("max_iterations", o.max_iterations);
+  v("max_solver_time_s", o.max_solver_time_s);
+  v("linear_solver", o.linear_solver);
+  v("association_rounds", o.association_rounds);
+  v("robust_loss", o.robust_loss);
+  v("robust_loss_scale_m", o.robust_loss_scale_m);
+  v("lidar_noise_m", o.lidar_noise_m);
+  v("min_matches", o.min_matches);
+  v("marginalize", o.marginalize);
+  v("min_translation_information", o.min_translation_information);
+  v("min_rotation_information", o.min_rotation_information);
+  v("cv_translation_noise", o.cv_translation_noise);
+  v("cv_rotation_noise", o.cv_rotation_noise);
+  v("no_imu_yaw_search_deg", o.no_imu_yaw_search_deg);
+  v("no_imu_yaw_search_step_deg", o.no_imu_yaw_search_step_deg);
+}
+
+template <class V>
 void VisitFields(V& v, registration::PlaneMatcherOptions& o) {
   v("num_neighbors", o.num_neighbors);
   v("max_neighbor_distance_m", o.max_neighbor_distance_m);
@@ -149,6 +169,7 @@ void VisitFields(V& v, RunConfig& run) {
   v.Section("preprocess", run.preprocess);
   v.Section("init", run.init);
   v.Section("ieskf", run.ieskf);
+  v.Section("sliding_window", run.sliding_window);
   v.Section("planes", run.planes);
   v.Section("map", run.map);
   v.Section("localization", run.localization);

@@ -18,6 +18,7 @@
 #include "hylo/estimation/imu_noise.h"
 #include "hylo/estimation/measurements.h"
 #include "hylo/estimation/nav_state.h"
+#include "hylo/estimation/sliding_window_options.h"
 #include "hylo/registration/plane_matcher.h"
 #include "hylo/registration/point_types.h"
 
@@ -53,6 +54,7 @@ class Estimator {
     bool use_imu = true;                ///< false: constant-velocity model, no IMU (imu: none)
     ImuNoise imu_noise;                 ///< continuous-time IMU noise
     IeskfOptions ieskf;                 ///< used when backend == kIeskf
+    SlidingWindowOptions sliding_window;  ///< used when backend == kSlidingWindow
     bool IsValid(std::string* why) const;
   };
 

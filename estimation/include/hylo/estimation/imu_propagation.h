@@ -42,4 +42,10 @@ ImuSample InterpolateImu(const std::vector<ImuSample>& samples, int64_t t_ns);
 std::vector<ImuInterval> MakeIntervals(const std::vector<ImuSample>& samples, int64_t t0_ns,
                                        int64_t t1_ns);
 
+/// The nominal state `x` carried to `t_ns` (Estimator::PredictAt of every back-end): through
+/// the buffered `imu` samples, or without IMU at constant velocity (`v_map_imu` and the body
+/// rate `omega_cv_imu`, rad/s). Times at or before x.t_ns return x itself.
+NavState PredictNominal(const NavState& x, const std::vector<ImuSample>& imu, bool use_imu,
+                        const Eigen::Vector3d& omega_cv_imu, int64_t t_ns);
+
 }  // namespace hylo::estimation

@@ -91,6 +91,7 @@ struct RunConfig {
   estimation::PreprocessOptions preprocess;       ///< scan clean-up and downsampling
   estimation::ImuInitializerOptions init;         ///< static IMU initialisation
   estimation::IeskfOptions ieskf;                 ///< the IESKF back-end
+  estimation::SlidingWindowOptions sliding_window;  ///< the sliding-window smoother back-end
   registration::PlaneMatcherOptions planes;       ///< point-to-plane association
   MapConfig map;                                  ///< map downsampling, window, hybrid mode
   LocalizationConfig localization;                ///< prior-map localization

@@ -1,0 +1,172 @@
+// The smoother's Ceres pieces: the SO3 manifold's invariants (Ceres' own checks), every
+// analytic factor Jacobian against Ceres' numeric differences through the manifold, and the
+// Schur-complement marginalisation against the marginal of a known Gaussian.
+#include <ceres/gradient_checker.h>
+#include <ceres/manifold_test_utils.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "hylo/estimation/so3_manifold.h"
+#include "marginalization.h"
+#include "sliding_window_factors.h"
+
+namespace hylo::estimation {
+namespace {
+
+Eigen::Vector3d RandomVector(std::mt19937* rng, double scale) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  return Eigen::Vector3d(n(*rng), n(*rng), n(*rng)) * scale;
+}
+
+Eigen::Vector4d Quaternion(const Eigen::Vector3d& phi) {
+  return lie::SO3d::Exp(phi).unit_quaternion().coeffs();
+}
+
+TEST(SO3Manifold, CeresInvariantsHold) {
+  using namespace ceres;  // NOLINT: Ceres' macro below uses unqualified names
+  const SO3Manifold manifold;
+  std::mt19937 rng(1);
+  // Generic rotations, one near identity and one near π.
+  std::vector<Eigen::Vector3d> points{RandomVector(&rng, 1.0), Eigen::Vector3d(1e-9, 0, 0),
+                                      Eigen::Vector3d(0, 0, M_PI - 1e-4)};
+  for (const Eigen::Vector3d& phi : points) {
+    const Eigen::Vector4d x = Quaternion(phi);
+    const Eigen::Vector3d delta = RandomVector(&rng, 0.3);
+    const Eigen::Vector4d y = Quaternion(lie::SO3d::Exp(phi).Log() + RandomVector(&rng, 0.2));
+    EXPECT_THAT_MANIFOLD_INVARIANTS_HOLD(manifold, x, delta, y, 1e-9);
+  }
+}
+
+TEST(SO3Manifold, LiftedJacobianReturnsTheTangentOneThroughPlusJacobian) {
+  std::mt19937 rng(2);
+  const Eigen::Vector4d q = Quaternion(RandomVector(&rng, 1.0));
+  Eigen::Matrix<double, 2, 3> tangent;
+  tangent << RandomVector(&rng, 1.0).transpose(), RandomVector(&rng, 1.0).transpose();
+  Eigen::Matrix<double, 2, 4, Eigen::RowMajor> ambient;
+  LiftRotationJacobian<2>(q.data(), tangent, ambient.data());
+  EXPECT_LT((ambient * RotationPlusJacobian(q.data()) - tangent).norm(), 1e-12);
+}
+
+// Ceres' GradientChecker differentiates numerically in the tangent space of each manifold.
+// Compared per block by norm (its per-entry relative error flags round-off on zero entries).
+void ExpectJacobiansCorrect(const ceres::CostFunction& cost,
+                            const std::vector<const ceres::Manifold*>& manifolds,
+                            std::vector<double*> parameters, double precision) {
+  ceres::NumericDiffOptions options;
+  const ceres::GradientChecker checker(&cost, &manifolds, options);
+  ceres::GradientChecker::ProbeResults results;
+  checker.Probe(parameters.data(), precision, &results);
+  ASSERT_TRUE(results.return_value);
+  for (std::size_t b = 0; b < parameters.size(); ++b) {
+    const ceres::Matrix& analytic = results.local_jacobians[b];
+    const ceres::Matrix& numeric = results.local_numeric_jacobians[b];
+    EXPECT_LE((analytic - numeric).norm(), precision * std::max(1.0, numeric.norm()))
+        << "block " << b << "\n" << analytic - numeric;
+  }
+}
+
+TEST(SlidingWindowFactors, ImuFactorJacobians) {
+  std::mt19937 rng(3);
+  ImuPreintegration pre(Eigen::Vector3d(0.002, 0, -0.001), Eigen::Vector3d(0.03, 0.01, 0),
+                        ImuNoise{});
+  for (int k = 0; k < 20; ++k) {
+    ImuInterval in;
+    in.dt_s = 0.005;
+    in.gyro_imu = RandomVector(&rng, 0.5);
+    in.accel_imu = RandomVector(&rng, 1.0) + Eigen::Vector3d(0, 0, 9.81);
+    pre.Integrate(in);
+  }
+  const Eigen::Vector3d g(0, 0, -9.81);
+  const ImuFactor factor(pre);
+  Eigen::Vector3d gravity = g + RandomVector(&rng, 0.01);
+  StateBlocks a, b;
+  NavState xi;
+  xi.R_map_imu = lie::SO3d::Exp(RandomVector(&rng, 1.0));
+  xi.v_map_imu = RandomVector(&rng, 1.0);
+  xi.gyro_bias = Eigen::Vector3d(0.003, 0.001, 0.0);
+  a.FromNavState(xi);
+  NavState xj = pre.Predict(xi, g);
+  xj.p_map_imu += RandomVector(&rng, 0.01);
+  xj.R_map_imu = xj.R_map_imu * lie::SO3d::Exp(RandomVector(&rng, 0.01));
+  b.FromNavState(xj);
+  const SO3Manifold so3;
+  // Whitened by very small IMU noise the residuals are large numbers: relative precision.
+  ExpectJacobiansCorrect(factor, {&so3, nullptr, nullptr, &so3, nullptr, nullptr, nullptr},
+                         {a.rotation, a.position, a.speed_bias, b.rotation, b.position,
+                          b.speed_bias, gravity.data()},
+                         1e-6);
+}
+
+TEST(SlidingWindowFactors, ScanPlaneFactorJacobians) {
+  std::mt19937 rng(4);
+  std::vector<PlaneMatch> matches(30);
+  for (PlaneMatch& m : matches) {
+    m.point_imu = RandomVector(&rng, 10.0);
+    m.plane.normal = RandomVector(&rng, 1.0).normalized();
+    m.plane.offset = RandomVector(&rng, 1.0).x();
+    m.sqrt_weight = 50.0;
+  }
+  const ScanPlaneFactor factor(matches);
+  Eigen::Vector4d q = Quaternion(RandomVector(&rng, 1.0));
+  Eigen::Vector3d p = RandomVector(&rng, 5.0);
+  const SO3Manifold so3;
+  ExpectJacobiansCorrect(factor, {&so3, nullptr}, {q.data(), p.data()}, 1e-7);
+}
+
+TEST(SlidingWindowFactors, ConstantVelocityFactorJacobians) {
+  std::mt19937 rng(5);
+  std::unique_ptr<ceres::CostFunction> factor(MakeConstantVelocityFactor(0.1, 0.12, 1.0, 0.5));
+  // Consecutive scans turn by tenths of a radian (autodiff is exact; the numeric reference
+  // loses digits when the relative rotations approach π).
+  const lie::SO3d Ra = lie::SO3d::Exp(RandomVector(&rng, 1.0));
+  const lie::SO3d Rb = Ra * lie::SO3d::Exp(RandomVector(&rng, 0.2));
+  const lie::SO3d Rc = Rb * lie::SO3d::Exp(RandomVector(&rng, 0.2));
+  Eigen::Vector4d qa = Ra.unit_quaternion().coeffs(), qb = Rb.unit_quaternion().coeffs(),
+                  qc = Rc.unit_quaternion().coeffs();
+  Eigen::Vector3d pa = RandomVector(&rng, 1.0), pb = RandomVector(&rng, 1.0),
+                  pc = RandomVector(&rng, 1.0);
+  const SO3Manifold so3;
+  ExpectJacobiansCorrect(*factor, {&so3, nullptr, &so3, nullptr, &so3, nullptr},
+                         {qa.data(), pa.data(), qb.data(), pb.data(), qc.data(), pc.data()}, 1e-7);
+}
+
+TEST(Marginalization, SchurComplementIsTheMarginalOfAGaussian) {
+  // Two "states" (rotation + position each) with a random joint information H: marginalising
+  // the first must leave exactly the information of the second's marginal, ((H⁻¹)_kk)⁻¹, and
+  // the prior factor's Jacobians must be right at and away from the linearisation point.
+  std::mt19937 rng(6);
+  std::normal_distribution<double> n(0.0, 1.0);
+  Eigen::Vector4d q0 = Quaternion(RandomVector(&rng, 1.0));
+  Eigen::Vector4d q1 = Quaternion(RandomVector(&rng, 1.0));
+  Eigen::Vector3d p0 = RandomVector(&rng, 1.0), p1 = RandomVector(&rng, 1.0);
+  const std::vector<BlockRef> order{
+      {q0.data(), 4, true}, {p0.data(), 3, false}, {q1.data(), 4, true}, {p1.data(), 3, false}};
+  Eigen::MatrixXd A(12, 12);
+  for (int i = 0; i < A.size(); ++i) A.data()[i] = n(rng);
+  const Eigen::MatrixXd H = A * A.transpose() + Eigen::MatrixXd::Identity(12, 12);
+  Eigen::VectorXd g(12);
+  for (int i = 0; i < 12; ++i) g(i) = n(rng);
+  const MarginalPrior joint = PriorFromInformation(order, H, g);
+  const MarginalPriorFactor joint_factor(joint);
+  const MarginalPrior marginal = Marginalize({{&joint_factor, {q0.data(), p0.data(), q1.data(),
+                                                                p1.data()}}},
+                                            order, 2);
+  const Eigen::MatrixXd expected = H.inverse().bottomRightCorner(6, 6).inverse();
+  const Eigen::MatrixXd got = marginal.J.transpose() * marginal.J;
+  EXPECT_LT((got - expected).norm(), 1e-9 * expected.norm());
+  const Eigen::VectorXd expected_g =
+      g.tail(6) - H.bottomLeftCorner(6, 6) * H.topLeftCorner(6, 6).inverse() * g.head(6);
+  EXPECT_LT((marginal.J.transpose() * marginal.r0 - expected_g).norm(), 1e-9 * expected_g.norm());
+
+  const MarginalPriorFactor factor(marginal);
+  const SO3Manifold so3;
+  Eigen::Vector4d q_moved = Quaternion(lie::SO3d(Eigen::Quaterniond(q1.data())).Log() +
+                                       RandomVector(&rng, 0.3));
+  Eigen::Vector3d p_moved = p1 + RandomVector(&rng, 0.5);
+  ExpectJacobiansCorrect(factor, {&so3, nullptr}, {q_moved.data(), p_moved.data()}, 1e-7);
+}
+
+}  // namespace
+}  // namespace hylo::estimation
