@@ -167,9 +167,9 @@ void RunAte(const AteArgs& args) {
   json["rotation_max_deg"] = ate.rotation_max_deg;
   json["path_length_m"] = ate.path_length_m;
   json["end_drift_m"] = ate.end_drift_m;
-  const Eigen::Matrix4d T = ate.T_reference_estimate.matrix();
-  json["T_reference_estimate"] =
-      io::Json::FromNumbers(std::vector<double>(T.transpose().data(), T.transpose().data() + 16));
+  // Row-major, as a 4×4 is read and typed (Eigen stores column-major).
+  const Eigen::Matrix<double, 4, 4, Eigen::RowMajor> T = ate.T_reference_estimate.matrix();
+  json["T_reference_estimate"] = io::Json::FromNumbers(std::vector<double>(T.data(), T.data() + 16));
   MaybeWriteJson(args.json, json);
 }
 

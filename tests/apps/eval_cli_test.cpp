@@ -95,7 +95,22 @@ TEST_F(EvalCliTest, AteWithAndWithoutAlignment) {
   EXPECT_NEAR(JsonNumber(json, "max_m"), 0.1, 1e-6);
   EXPECT_EQ(JsonNumber(json, "num_poses"), 100);
   ASSERT_EQ(RunHylo(base + " --est " + Path("shifted.txt"), Path("err.txt")), 0);
-  EXPECT_LT(JsonNumber(ReadText(Path("ate.json")), "rmse_m"), 1e-6);
+  json = ReadText(Path("ate.json"));
+  EXPECT_LT(JsonNumber(json, "rmse_m"), 1e-6);
+  // The alignment moves the estimate back by 0.1 m in y: row-major, the translation is the
+  // last column (elements 3, 7, 11), the last row 0 0 0 1.
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(json, m, std::regex("\"T_reference_estimate\": *\\[([^\\]]*)\\]")));
+  std::vector<double> T;
+  std::stringstream values(std::regex_replace(m[1].str(), std::regex(","), " "));
+  for (double v; values >> v;) T.push_back(v);
+  ASSERT_EQ(T.size(), 16u);
+  EXPECT_NEAR(T[3], 0.0, 1e-6);
+  EXPECT_NEAR(T[7], -0.1, 1e-6);
+  EXPECT_NEAR(T[11], 0.0, 1e-6);
+  EXPECT_NEAR(T[15], 1.0, 1e-12);
+  EXPECT_NEAR(T[12], 0.0, 1e-12);
+  EXPECT_NEAR(T[13], 0.0, 1e-12);
   ASSERT_EQ(RunHylo(base + " --est " + Path("scaled.txt") + " --align sim3", Path("err.txt")), 0);
   json = ReadText(Path("ate.json"));
   EXPECT_NEAR(JsonNumber(json, "scale"), 2.0, 1e-6);

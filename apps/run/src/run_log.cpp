@@ -24,14 +24,6 @@ namespace {
 using estimation::OdometryPipeline;
 using estimation::ScanResult;
 
-registration::PointCloud ToLocal(const std::vector<Eigen::Vector3d>& points_world,
-                                 const Eigen::Vector3d& origin_world) {
-  registration::PointCloud local;
-  local.reserve(points_world.size());
-  for (const Eigen::Vector3d& p : points_world) local.push_back((p - origin_world).cast<float>());
-  return local;
-}
-
 void WriteMapFile(const std::string& path, const registration::PointCloud& points_map,
                   const Eigen::Vector3d& origin_world) {
   io::CloudFile file;
