@@ -18,6 +18,8 @@ void AddLocalizeCommand(CLI::App& root);
 void AddSimulateCommand(CLI::App& root);
 void AddTraversabilityCommand(CLI::App& root);
 void AddEvalCommand(CLI::App& root);
+void AddCompareCommand(CLI::App& root);
+void AddDemoCommand(CLI::App& root);
 
 /// Writes `summary` to `path` when the user passed --json (path non-empty).
 void MaybeWriteJson(const std::string& path, const io::Json& summary);

@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
   hylo::cli::AddSimulateCommand(app);
   hylo::cli::AddTraversabilityCommand(app);
   hylo::cli::AddEvalCommand(app);
+  hylo::cli::AddCompareCommand(app);
+  hylo::cli::AddDemoCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
