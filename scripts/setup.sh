@@ -9,6 +9,9 @@ packages=(
   libyaml-cpp-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libnanoflann-dev
   librosbag-storage-dev libroscpp-dev libroscpp-core-dev
   libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libstd-msgs-dev
+  # ROS1 node (apps/ros) and its integration test: tf2_ros, std_srvs; roscore + rosbag play
+  libtf2-ros-dev libstd-srvs-dev ros-core
+  python3-std-srvs python3-nav-msgs python3-sensor-msgs  # rostopic/rosservice on its types
   gnuplot-nox
 )
 

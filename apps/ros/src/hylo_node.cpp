@@ -1,0 +1,290 @@
+#include "hylo_node.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "hylo/io/cloud_io.h"
+#include "hylo/mapping/prior_map.h"
+#include "hylo/registration/pose_guess.h"
+#include "ros_messages.h"
+
+namespace hylo::rosnode {
+namespace {
+
+using Status = estimation::OdometryPipeline::Status;
+using EventKind = estimation::LocalizationEvent::Kind;
+
+FrameNames FramesOf(const config::RunConfig& config) {
+  return {config.output.map_frame, config.output.odom_frame, config.output.base_frame};
+}
+
+estimation::OdometryPipelineOptions PipelineOptionsFor(const config::RunConfig& config,
+                                                       const NodeParams& params) {
+  estimation::OdometryPipelineOptions options = config.PipelineOptions();
+  if (params.registered_scan_voxel_m >= 0.0) {
+    options.registered_scan_voxel_m = params.registered_scan_voxel_m;
+  }
+  return options;
+}
+
+InputQueueOptions QueueOptionsFor(const config::RunConfig& config, const NodeParams& params) {
+  InputQueueOptions options = params.queue;
+  options.wait_for_imu = config.imu.enabled;
+  return options;
+}
+
+}  // namespace
+
+HyloNode::HyloNode(ros::NodeHandle nh, ros::NodeHandle private_nh, const NodeParams& params)
+    : nh_(nh),
+      private_nh_(private_nh),
+      params_(params),
+      config_(config::LoadRunConfig(params.config_path)),
+      frames_(FramesOf(config_)),
+      pipeline_(PipelineOptionsFor(config_, params)),
+      input_(QueueOptionsFor(config_, params)),
+      outputs_(private_nh_, frames_, params.outputs),
+      convention_(config_.lidar.time_convention) {
+  if (!params_.prior_map.empty()) LoadPriorMap();
+  if (!params_.costmap.empty()) outputs_.PublishCostmap(ReadMapServerMap(params_.costmap));
+  // roscpp's queues only buffer between the socket and the callbacks, which decode and
+  // enqueue; the bounded InputQueue is where messages wait for the worker.
+  cloud_sub_ = nh_.subscribe(config_.lidar.topic, 20, &HyloNode::OnCloud, this);
+  if (config_.imu.enabled) {
+    imu_sub_ = nh_.subscribe(config_.imu.topic, 2000, &HyloNode::OnImu, this,
+                             ros::TransportHints().tcpNoDelay());
+  }
+  initial_pose_sub_ = nh_.subscribe("/initialpose", 2, &HyloNode::OnInitialPose, this);
+  relocalize_srv_ = private_nh_.advertiseService("relocalize", &HyloNode::OnRelocalize, this);
+  save_map_srv_ = private_nh_.advertiseService("save_map", &HyloNode::OnSaveMap, this);
+  ROS_INFO("hylo_node: %s, back-end %s, lidar %s, imu %s, frames %s -> %s -> %s",
+           localizing_ ? "localization in a prior map" : "SLAM", config_.backend.c_str(),
+           config_.lidar.topic.c_str(), config_.imu.enabled ? config_.imu.topic.c_str() : "none",
+           frames_.map.c_str(), frames_.odom.c_str(), frames_.base.c_str());
+}
+
+void HyloNode::LoadPriorMap() {
+  const std::string guess = params_.initial_guess.empty()
+                                ? config_.localization.initial_guess
+                                : params_.initial_guess;
+  if (guess.empty()) {
+    throw std::runtime_error("~prior_map needs ~initial_guess (\"x y z roll pitch yaw\", m and "
+                             "deg) or localization.initial_guess in " + params_.config_path);
+  }
+  Eigen::Isometry3d T_world_imu;
+  try {
+    T_world_imu = registration::ParsePoseGuess(guess);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(std::string("initial guess: ") + e.what());
+  }
+  mapping::PriorMapOptions options;
+  options.resolution_m = config_.map.prior_resolution_m;
+  const mapping::PriorMap prior =
+      mapping::BuildPriorMap(io::ReadCloud(params_.prior_map).positions, options,
+                             params_.prior_map);
+  origin_world_ = prior.origin_world;
+  pipeline_.SetPriorMap(prior.points_local);
+  pipeline_.SetInitialGuess(mapping::PoseToLocal(T_world_imu, origin_world_));
+  localizing_ = true;
+  outputs_.SetOrigin(origin_world_);
+  outputs_.PublishMap(prior.points_local, 0);
+  ROS_INFO("hylo_node: prior map %s, %zu points kept of %zu, origin (%.1f, %.1f, %.1f)",
+           params_.prior_map.c_str(), prior.num_kept, prior.num_input, origin_world_.x(),
+           origin_world_.y(), origin_world_.z());
+}
+
+void HyloNode::OnCloud(const sensor_msgs::PointCloud2::ConstPtr& msg) {
+  io::PointCloud2Message cloud = FromRos(*msg);
+  if (convention_ == io::PointTimeConvention::kAuto) {
+    convention_ = io::DetectPointTimeConvention(cloud.fields);
+  }
+  estimation::LidarScan scan;
+  try {
+    scan = io::DecodePointCloud2(cloud, convention_, nullptr);
+  } catch (const std::runtime_error& e) {
+    ++undecodable_scans_;
+    ROS_WARN_THROTTLE(5.0, "hylo_node: %s: scan skipped (%zu so far): %s",
+                      config_.lidar.topic.c_str(), undecodable_scans_, e.what());
+    return;
+  }
+  // The extrinsic as a static TF, unless the driver already stamps clouds in the base frame.
+  if (!lidar_extrinsic_published_ && !msg->header.frame_id.empty() &&
+      msg->header.frame_id != frames_.base) {
+    outputs_.PublishLidarExtrinsic(msg->header.frame_id, config_.T_imu_lidar.ToIsometry());
+    lidar_extrinsic_published_ = true;
+  }
+  if (!input_.PushScan(std::move(scan))) {
+    ROS_WARN_THROTTLE(5.0, "hylo_node: late or out-of-order scan dropped (see ~health)");
+  }
+}
+
+void HyloNode::OnImu(const sensor_msgs::Imu::ConstPtr& msg) {
+  const estimation::ImuSample sample = FromRos(*msg, config_.imu.accel_scale);
+  if (!sample.accel_imu.allFinite() || !sample.gyro_imu.allFinite()) return;
+  if (!input_.PushImu(sample)) {
+    ROS_WARN_THROTTLE(5.0, "hylo_node: late or out-of-order IMU sample dropped (see ~health)");
+  }
+}
+
+bool HyloNode::RequestRelocalization(const std::string& frame_id,
+                                     const Eigen::Isometry3d& T_world_imu, std::string* why) {
+  if (!localizing_) {
+    *why = "no prior map (SLAM mode): nothing to relocalize against";
+    return false;
+  }
+  if (!frame_id.empty() && frame_id != frames_.map) {
+    *why = "pose in frame '" + frame_id + "', expected '" + frames_.map + "'";
+    return false;
+  }
+  {
+    std::lock_guard<std::mutex> lock(request_mutex_);
+    relocalization_request_ = mapping::PoseToLocal(T_world_imu, origin_world_);
+  }
+  input_.Notify();
+  return true;
+}
+
+void HyloNode::OnInitialPose(const geometry_msgs::PoseWithCovarianceStamped::ConstPtr& msg) {
+  std::string why;
+  if (!RequestRelocalization(msg->header.frame_id, FromRos(msg->pose.pose), &why)) {
+    ROS_WARN("hylo_node: /initialpose ignored: %s", why.c_str());
+  }
+}
+
+bool HyloNode::OnRelocalize(nav_msgs::SetMap::Request& request,
+                            nav_msgs::SetMap::Response& response) {
+  std::string why;
+  response.success = RequestRelocalization(request.initial_pose.header.frame_id,
+                                           FromRos(request.initial_pose.pose.pose), &why);
+  if (!response.success) ROS_WARN("hylo_node: ~relocalize refused: %s", why.c_str());
+  return true;
+}
+
+bool HyloNode::OnSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  auto promise = std::make_shared<std::promise<std::string>>();
+  std::future<std::string> answer = promise->get_future();
+  {
+    std::lock_guard<std::mutex> lock(request_mutex_);
+    save_requests_.push_back(promise);
+  }
+  input_.Notify();
+  if (answer.wait_for(std::chrono::seconds(60)) != std::future_status::ready) {
+    response.success = false;
+    response.message = "the worker did not answer within 60 s";
+    return true;
+  }
+  try {
+    response.message = answer.get();
+    response.success = true;
+  } catch (const std::exception& e) {
+    response.success = false;
+    response.message = e.what();
+  }
+  return true;
+}
+
+void HyloNode::ServeRequests() {
+  std::optional<Eigen::Isometry3d> relocalization;
+  std::vector<std::shared_ptr<std::promise<std::string>>> saves;
+  {
+    std::lock_guard<std::mutex> lock(request_mutex_);
+    relocalization.swap(relocalization_request_);
+    saves.swap(save_requests_);
+  }
+  if (relocalization) {
+    pipeline_.RequestRelocalization(*relocalization);
+    relocalization_pending_ = true;
+    ROS_INFO("hylo_node: relocalization requested");
+  }
+  if (saves.empty()) return;
+  std::string path = params_.save_map_path;
+  private_nh_.getParam("save_map_path", path);
+  for (auto& promise : saves) {
+    try {
+      promise->set_value(SaveMap(path));
+    } catch (...) {
+      promise->set_exception(std::current_exception());
+    }
+  }
+}
+
+std::string HyloNode::SaveMap(const std::string& path) {
+  io::CloudFile cloud;
+  const registration::PointCloud points_map = pipeline_.map().Flatten();
+  cloud.positions.reserve(points_map.size());
+  for (const Eigen::Vector3f& p : points_map) {
+    cloud.positions.push_back(p.cast<double>() + origin_world_);
+  }
+  io::WriteCloud(path, cloud);
+  return "wrote " + std::to_string(cloud.positions.size()) + " points to " + path;
+}
+
+void HyloNode::ReportEvents() {
+  const std::vector<estimation::LocalizationEvent>& events = pipeline_.events();
+  for (; events_seen_ < events.size(); ++events_seen_) {
+    const estimation::LocalizationEvent& e = events[events_seen_];
+    last_event_ = estimation::ToString(e.kind) + ": " + e.message;
+    ROS_INFO("hylo_node: %s", last_event_.c_str());
+    if (e.kind == EventKind::kRelocalized || e.kind == EventKind::kRelocalizationFailed ||
+        e.kind == EventKind::kInitialized || e.kind == EventKind::kInitializationFailed) {
+      relocalization_pending_ = false;
+    }
+  }
+}
+
+void HyloNode::PublishHealth(const estimation::ScanResult* last) {
+  // Between scans (initialising, a stalled stream) the last scan's figures are repeated.
+  HealthReport& report = health_;
+  report.state = StateOf(pipeline_.status(), relocalization_pending_);
+  report.localizing = localizing_;
+  report.backend = config_.backend;
+  if (last != nullptr) {
+    report.t_ns = last->t_ns;
+    report.scan = last->health;
+    // The update's plane matches, also in SLAM where the fit to the map is not evaluated.
+    report.scan.num_matches = last->update.num_matches;
+    report.update_applied = last->update.applied;
+  }
+  report.pipeline = pipeline_.counters();
+  report.input = input_.counters();
+  report.map_points = pipeline_.map().Size();
+  report.last_event = last_event_;
+  report.message = pipeline_.message();
+  outputs_.PublishHealth(HealthJson(report));
+  last_health_ = ros::WallTime::now();
+}
+
+void HyloNode::Run() {
+  std::vector<estimation::ImuSample> imu;
+  std::vector<estimation::LidarScan> scans;
+  std::vector<estimation::ScanResult> results;
+  last_health_ = ros::WallTime::now();
+  while (ros::ok()) {
+    imu.clear();
+    scans.clear();
+    if (!input_.Pop(&imu, &scans, std::chrono::milliseconds(100))) break;
+    ServeRequests();
+    results.clear();
+    // A failed pipeline (see ~health) takes no more data: its queue would only grow.
+    if (pipeline_.status() != Status::kFailed) {
+      for (const auto& sample : imu) pipeline_.AddImu(sample);
+      for (auto& scan : scans) pipeline_.AddScan(std::move(scan));
+      pipeline_.Process(&results);
+    }
+    for (const estimation::ScanResult& r : results) outputs_.PublishScan(r);
+    if (!results.empty() && outputs_.MapDue(results.back().t_ns, pipeline_.map().Size())) {
+      outputs_.PublishMap(pipeline_.map().Flatten(), results.back().t_ns);
+    }
+    ReportEvents();
+    if (pipeline_.status() == Status::kFailed && !failure_reported_) {
+      ROS_ERROR("hylo_node: the pipeline stopped: %s", pipeline_.message().c_str());
+      failure_reported_ = true;
+    }
+    if (!results.empty() || (ros::WallTime::now() - last_health_).toSec() >= 1.0) {
+      PublishHealth(results.empty() ? nullptr : &results.back());
+    }
+  }
+  input_.Close();
+}
+
+}  // namespace hylo::rosnode

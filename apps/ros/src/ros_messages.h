@@ -1,0 +1,60 @@
+#pragma once
+// The only place where ROS message types meet hylo's: ROS → the plain PointCloud2 mirror and
+// ImuSample on the way in; scan results → nav_msgs/geometry_msgs/sensor_msgs on the way out.
+
+#include <geometry_msgs/Pose.h>
+#include <geometry_msgs/Transform.h>
+#include <nav_msgs/OccupancyGrid.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/time.h>
+#include <sensor_msgs/Imu.h>
+#include <sensor_msgs/PointCloud2.h>
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <string>
+
+#include "costmap_grid.h"
+#include "frames.h"
+#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/io/pointcloud2.h"
+
+namespace hylo::rosnode {
+
+/// Frame names of the outputs (output.map_frame / odom_frame / base_frame of the YAML).
+struct FrameNames {
+  std::string map = "map";
+  std::string odom = "odom";
+  std::string base = "base_link";
+};
+
+int64_t FromRosTime(const ros::Time& t);
+/// Negative stamps (not representable in ros::Time) are clamped to 0.
+ros::Time ToRosTime(int64_t t_ns);
+
+/// Copies the message into the mirror that io::DecodePointCloud2 reads.
+io::PointCloud2Message FromRos(const sensor_msgs::PointCloud2& msg);
+/// The sample in the IMU frame, accelerations multiplied by `accel_scale` (drivers in g).
+estimation::ImuSample FromRos(const sensor_msgs::Imu& msg, double accel_scale);
+
+Eigen::Isometry3d FromRos(const geometry_msgs::Pose& pose);
+geometry_msgs::Pose ToPoseMsg(const Eigen::Isometry3d& T);
+geometry_msgs::Transform ToTransformMsg(const Eigen::Isometry3d& T);
+
+/// x y z float32 cloud in `frame_id`, `origin_world` added to every point (in double, then
+/// rounded once). float32, as RViz and PCL expect: keep the coordinates small (node_outputs.h
+/// publishes in the local frame).
+sensor_msgs::PointCloud2 ToCloudMsg(const registration::PointCloud& points_map,
+                                    const Eigen::Vector3d& origin_world, int64_t t_ns,
+                                    const std::string& frame_id);
+
+/// The costmap as an OccupancyGrid in `frame_id`.
+nav_msgs::OccupancyGrid ToGridMsg(const OccupancyGridData& grid, const std::string& frame_id,
+                                  const ros::Time& stamp);
+
+/// Pose (map frame → base, with its covariance about the map axes) and body twist (base
+/// frame) of one scan result, stamped at the scan end.
+nav_msgs::Odometry ToOdometryMsg(const estimation::ScanResult& result, const FramePoses& poses,
+                                 const FrameNames& frames);
+
+}  // namespace hylo::rosnode
