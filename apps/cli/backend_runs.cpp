@@ -90,12 +90,7 @@ int RunChild(const std::vector<std::string>& args, std::string* error) {
 
 std::vector<estimation::TimedPose> ToTimed(const std::vector<io::StampedPose>& poses) {
   std::vector<estimation::TimedPose> out;
-  for (const io::StampedPose& p : poses) {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = p.orientation.toRotationMatrix();
-    T.translation() = p.position;
-    out.push_back({p.t_ns, T});
-  }
+  for (const io::StampedPose& p : poses) out.push_back({p.t_ns, p.T_world_body()});
   return out;
 }
 

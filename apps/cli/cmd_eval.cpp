@@ -57,12 +57,7 @@ std::vector<estimation::TimedPose> ReadTrajectory(const std::string& path, const
   }
   if (poses.empty()) throw std::runtime_error("'" + path + "' holds no pose");
   std::vector<estimation::TimedPose> out;
-  for (const io::StampedPose& p : poses) {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = p.orientation.toRotationMatrix();
-    T.translation() = p.position;
-    out.push_back({p.t_ns, T});
-  }
+  for (const io::StampedPose& p : poses) out.push_back({p.t_ns, p.T_world_body()});
   return out;
 }
 

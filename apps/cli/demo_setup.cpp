@@ -39,10 +39,8 @@ Eigen::Isometry3d SessionBGuess(const std::string& truth_b_path, const estimatio
     throw std::runtime_error("session A's alignment to the truth failed: " + ate_a.message);
   const std::vector<io::StampedPose> truth = io::ReadTum(truth_b_path);
   if (truth.empty()) throw std::runtime_error(truth_b_path + ": no pose");
-  Eigen::Isometry3d T_sim_imu = Eigen::Isometry3d::Identity();
-  T_sim_imu.linear() = truth.front().orientation.toRotationMatrix();
-  T_sim_imu.translation() = truth.front().position;
-  Eigen::Isometry3d T_map_imu = ate_a.T_reference_estimate.inverse() * T_sim_imu;
+  Eigen::Isometry3d T_map_imu =
+      ate_a.T_reference_estimate.inverse() * truth.front().T_world_body();
   const double direction = std::atan2(0.6, 0.8);
   T_map_imu.translation() +=
       error.translation_m * Eigen::Vector3d(std::cos(direction), std::sin(direction), 0.0);
@@ -57,16 +55,10 @@ double PriorFrameErrorRmse(const std::vector<io::StampedPose>& trajectory_map,
                            const std::string& truth_b_path, const estimation::AteResult& ate_a) {
   std::vector<estimation::TimedPose> estimate, truth;
   for (const io::StampedPose& p : trajectory_map) {
-    Eigen::Isometry3d T_map_imu = Eigen::Isometry3d::Identity();
-    T_map_imu.linear() = p.orientation.toRotationMatrix();
-    T_map_imu.translation() = p.position;
-    estimate.push_back({p.t_ns, ate_a.T_reference_estimate * T_map_imu});
+    estimate.push_back({p.t_ns, ate_a.T_reference_estimate * p.T_world_body()});
   }
   for (const io::StampedPose& p : io::ReadTum(truth_b_path)) {
-    Eigen::Isometry3d T_sim_imu = Eigen::Isometry3d::Identity();
-    T_sim_imu.linear() = p.orientation.toRotationMatrix();
-    T_sim_imu.translation() = p.position;
-    truth.push_back({p.t_ns, T_sim_imu});
+    truth.push_back({p.t_ns, p.T_world_body()});
   }
   estimation::AteOptions options;
   options.alignment = estimation::Alignment::kNone;

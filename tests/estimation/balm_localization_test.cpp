@@ -17,13 +17,6 @@
 namespace hylo::estimation {
 namespace {
 
-Eigen::Isometry3d ToIsometry(const io::StampedPose& p) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = p.orientation.normalized().toRotationMatrix();
-  T.translation() = p.position;
-  return T;
-}
-
 const io::StampedPose* PoseAt(const std::vector<io::StampedPose>& poses, int64_t t_ns) {
   for (const io::StampedPose& p : poses) {
     if (p.t_ns == t_ns) return &p;
@@ -53,7 +46,7 @@ TEST_P(BalmLocalization, OddScansInAMapOfTheEvenScans) {
     }
     const io::StampedPose* pose = PoseAt(reference, message.scan.t_ns);
     ASSERT_NE(pose, nullptr);
-    const Eigen::Isometry3d T_world_lidar = ToIsometry(*pose);
+    const Eigen::Isometry3d T_world_lidar = pose->T_world_body();
     for (const auto& p : message.scan.points) {
       map_world.push_back(T_world_lidar * p.position_lidar.cast<double>());
     }
@@ -77,7 +70,7 @@ TEST_P(BalmLocalization, OddScansInAMapOfTheEvenScans) {
   pipeline.SetPriorMap(prior.points_local);
   const io::StampedPose* first = PoseAt(reference, odd.front().t_ns);
   ASSERT_NE(first, nullptr);
-  Eigen::Isometry3d guess = mapping::PoseToLocal(ToIsometry(*first), prior.origin_world);
+  Eigen::Isometry3d guess = mapping::PoseToLocal(first->T_world_body(), prior.origin_world);
   guess.translation() += Eigen::Vector3d(0.8, -0.6, 0.1);
   guess.linear() = Eigen::AngleAxisd(10.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()) *
                    guess.linear();
@@ -97,7 +90,7 @@ TEST_P(BalmLocalization, OddScansInAMapOfTheEvenScans) {
     ASSERT_NE(ref, nullptr);
     const Eigen::Isometry3d est = mapping::PoseToWorld(
         Eigen::Isometry3d(results[i].state.T_map_lidar().Matrix()), prior.origin_world);
-    const Eigen::Isometry3d truth = ToIsometry(*ref);
+    const Eigen::Isometry3d truth = ref->T_world_body();
     const double e = (est.translation() - truth.translation()).norm();
     const double a = Eigen::AngleAxisd(est.linear().transpose() * truth.linear()).angle() *
                      180.0 / M_PI;

@@ -147,10 +147,8 @@ std::vector<estimation::TimedPose> ReadTruth(const std::string& path,
                                              const Eigen::Vector3d& offset_world) {
   std::vector<estimation::TimedPose> truth;
   for (const io::StampedPose& p : io::ReadTum(path)) {
-    estimation::TimedPose pose;
-    pose.t_ns = p.t_ns;
-    pose.T_world_body.linear() = p.orientation.toRotationMatrix();
-    pose.T_world_body.translation() = p.position + offset_world;
+    estimation::TimedPose pose{p.t_ns, p.T_world_body()};
+    pose.T_world_body.translation() += offset_world;
     truth.push_back(pose);
   }
   return truth;

@@ -16,6 +16,14 @@ struct StampedPose {
   int64_t t_ns = 0;                                                ///< stamp, ns
   Eigen::Vector3d position = Eigen::Vector3d::Zero();              ///< body origin in world, m
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< R_world_body (unit)
+
+  /// The pose as the transform T_world_body.
+  Eigen::Isometry3d T_world_body() const {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = orientation.normalized().toRotationMatrix();
+    T.translation() = position;
+    return T;
+  }
 };
 
 /// Reads a TUM file: exactly 8 numbers per line, `#` comments and blank lines allowed.
