@@ -8,6 +8,7 @@
 #include "hylo/io/log_reader.h"
 #include "hylo/io/scan_folder.h"
 #include "test_data.h"
+#include "estimation/param_printers.h"
 
 namespace hylo::estimation {
 namespace {
@@ -21,6 +22,7 @@ struct BalmCase {
   Estimator::Backend backend;
   double max_rmse_m, max_rmse_deg;  // regression guards, not the target
 };
+void PrintTo(const BalmCase& c, std::ostream* os) { *os << ToString(c.backend); }
 
 class BalmScansNoImu : public ::testing::TestWithParam<BalmCase> {};
 

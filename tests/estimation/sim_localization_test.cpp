@@ -13,6 +13,7 @@
 #include "hylo/registration/cloud_distance.h"
 #include "hylo/sim/surface_distance.h"
 #include "hylo/sim/world.h"
+#include "estimation/param_printers.h"
 
 namespace hylo::testing {
 namespace {

@@ -6,6 +6,11 @@
 
 #include "estimation/sim_odometry_util.h"
 
+namespace hylo::sim {
+// ctest lists the lidar by name rather than the enum's raw bytes.
+inline void PrintTo(LidarModel model, std::ostream* os) { *os << ToString(model); }
+}  // namespace hylo::sim
+
 namespace hylo::testing {
 namespace {
 

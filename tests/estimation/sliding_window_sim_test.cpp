@@ -8,6 +8,7 @@
 #include <map>
 
 #include "estimation/sim_odometry_util.h"
+#include "estimation/param_printers.h"
 
 namespace hylo::testing {
 namespace {
