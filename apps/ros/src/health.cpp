@@ -2,6 +2,7 @@
 
 #include "hylo/common/time.h"
 #include "hylo/io/json.h"
+#include "hylo/run/run_log.h"
 
 namespace hylo::rosnode {
 
@@ -43,21 +44,6 @@ io::Json InputJson(const InputCounters& c) {
   return j;
 }
 
-io::Json PipelineJson(const estimation::PipelineCounters& c) {
-  io::Json j;
-  j["scans_processed"] = c.scans_processed;
-  j["scans_before_init"] = c.scans_before_init;
-  j["scans_too_small"] = c.scans_too_small;
-  j["scans_not_applied"] = c.scans_not_applied;
-  j["scans_degenerate"] = c.scans_degenerate;
-  j["scans_bad_health"] = c.scans_bad_health;
-  j["imu_stale"] = c.queue.imu_stale;
-  j["imu_duplicates"] = c.queue.imu_duplicates;
-  j["scan_stale"] = c.queue.scan_stale;
-  j["scan_duplicates"] = c.queue.scan_duplicates;
-  j["imu_gaps"] = c.queue.imu_gaps;
-  return j;
-}
 
 }  // namespace
 
@@ -73,7 +59,7 @@ std::string HealthJson(const HealthReport& report) {
   j["scan_good"] = report.scan.good;
   j["update_applied"] = report.update_applied;
   j["map_points"] = report.map_points;
-  j["pipeline"] = PipelineJson(report.pipeline);
+  j["pipeline"] = run::PipelineCountersJson(report.pipeline);
   j["input"] = InputJson(report.input);
   j["last_event"] = report.last_event;
   j["message"] = report.message;

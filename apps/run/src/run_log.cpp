@@ -53,24 +53,6 @@ io::Json EventsJson(const std::vector<estimation::LocalizationEvent>& events,
   return array;
 }
 
-io::Json CountersJson(const estimation::PipelineCounters& c) {
-  io::Json j;
-  j["scans_processed"] = c.scans_processed;
-  j["scans_before_init"] = c.scans_before_init;
-  j["scans_initializer"] = c.scans_initializer;
-  j["scans_too_small"] = c.scans_too_small;
-  j["scans_not_applied"] = c.scans_not_applied;
-  j["scans_degenerate"] = c.scans_degenerate;
-  j["scans_bad_health"] = c.scans_bad_health;
-  j["points_dropped_sanitize"] = c.points_dropped_sanitize;
-  j["queue"]["imu_duplicates"] = c.queue.imu_duplicates;
-  j["queue"]["imu_stale"] = c.queue.imu_stale;
-  j["queue"]["scan_duplicates"] = c.queue.scan_duplicates;
-  j["queue"]["scan_stale"] = c.queue.scan_stale;
-  j["queue"]["imu_gaps"] = c.queue.imu_gaps;
-  j["queue"]["longest_imu_gap_s"] = NanosToSeconds(c.queue.longest_imu_gap_ns);
-  return j;
-}
 
 // The paper's cloud-to-cloud metric: the registered scans against the prior map.
 io::Json CloudToCloudJson(const registration::PointCloud& registered_map,
@@ -94,6 +76,25 @@ io::Json CloudToCloudJson(const registration::PointCloud& registered_map,
 }
 
 }  // namespace
+
+io::Json PipelineCountersJson(const estimation::PipelineCounters& c) {
+  io::Json j;
+  j["scans_processed"] = c.scans_processed;
+  j["scans_before_init"] = c.scans_before_init;
+  j["scans_initializer"] = c.scans_initializer;
+  j["scans_too_small"] = c.scans_too_small;
+  j["scans_not_applied"] = c.scans_not_applied;
+  j["scans_degenerate"] = c.scans_degenerate;
+  j["scans_bad_health"] = c.scans_bad_health;
+  j["points_dropped_sanitize"] = c.points_dropped_sanitize;
+  j["queue"]["imu_duplicates"] = c.queue.imu_duplicates;
+  j["queue"]["imu_stale"] = c.queue.imu_stale;
+  j["queue"]["scan_duplicates"] = c.queue.scan_duplicates;
+  j["queue"]["scan_stale"] = c.queue.scan_stale;
+  j["queue"]["imu_gaps"] = c.queue.imu_gaps;
+  j["queue"]["longest_imu_gap_s"] = NanosToSeconds(c.queue.longest_imu_gap_ns);
+  return j;
+}
 
 RunResult RunLog(const RunRequest& request) {
   const config::RunConfig& config = request.config;
@@ -181,7 +182,7 @@ RunResult RunLog(const RunRequest& request) {
   j["backend"] = config.backend;
   j["imu"] = config.imu.enabled;
   j["scans_processed"] = results.size();
-  j["counters"] = CountersJson(pipeline.counters());
+  j["counters"] = PipelineCountersJson(pipeline.counters());
   j["path_length_m"] = path_m;
   j["map_points"] = pipeline.map().Size();
   j["map_points_added"] = pipeline.map().run_size();

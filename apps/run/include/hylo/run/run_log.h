@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "hylo/config/run_config.h"
+#include "hylo/estimation/odometry_pipeline.h"
 #include "hylo/io/json.h"
 #include "hylo/io/trajectory_io.h"
 
@@ -44,6 +45,10 @@ struct RunResult {
   std::vector<io::StampedPose> trajectory;   ///< T_world_imu, one per processed scan
   std::vector<double> ms_per_scan;           ///< wall time per processed scan, ms
 };
+
+/// The pipeline's counters (scans processed, skipped, not applied, queue drops and gaps) as
+/// the `counters` object of summary.json; the ROS node's health topic carries the same.
+io::Json PipelineCountersJson(const estimation::PipelineCounters& counters);
 
 /// Runs the log. Throws std::runtime_error naming the file and reason for unreadable input,
 /// a failed initialisation (vehicle moving, no accepted ICP start) or a log with no scan.
