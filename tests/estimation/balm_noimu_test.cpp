@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "hylo/config/run_config.h"
 #include "hylo/estimation/odometry_pipeline.h"
 #include "hylo/io/log_reader.h"
 #include "hylo/io/scan_folder.h"
@@ -13,35 +14,27 @@
 namespace hylo::estimation {
 namespace {
 
-// One case per back-end. Issue 5's target is 2 cm / 0.2 deg RMSE; it is NOT met yet:
-// measured IESKF 0.053 m / 1.87 deg, smoother 0.076 m / 2.56 deg (the same scans, 8, 9, 11,
-// 12 and 19, with large hand-held rotations, do not converge in either; the others drift by
-// 1.5-4 cm). The bounds below guard what works today against regressions; the per-scan
-// figures are printed on every run.
+// One case per back-end, both from the shipped config/handheld_noimu.yaml, so the figures are
+// what `hylo map --config config/handheld_noimu.yaml` gives. Issue 5's target: 2 cm / 0.2 deg
+// RMSE. The data README notes the reference poses agree with scan-to-scan ICP within ~1.5 cm /
+// 0.14 deg, so a drifting SLAM run sits near 2 cm by construction; measured IESKF 1.97 cm /
+// 0.194 deg, smoother 1.96 cm / 0.106 deg (was 5.3 cm / 1.87 deg with 10 iterations and a
+// 0.3 m map: the scans after the sharpest turns stopped unconverged). Per-scan figures print.
 struct BalmCase {
   Estimator::Backend backend;
-  double max_rmse_m, max_rmse_deg;  // regression guards, not the target
 };
 void PrintTo(const BalmCase& c, std::ostream* os) { *os << ToString(c.backend); }
 
 class BalmScansNoImu : public ::testing::TestWithParam<BalmCase> {};
 
-TEST_P(BalmScansNoImu, PosesStayNearTheReferenceTargetNotYetMet) {
+TEST_P(BalmScansNoImu, PosesStayWithinTwoCentimetresAndPointTwoDegreesOfTheReference) {
   HYLO_REQUIRE_DATA("balm_scans/poses.csv");
   const std::string dir = hylo::testing::DataPath("balm_scans");
-  OdometryPipelineOptions options;
+  const config::RunConfig run =
+      config::LoadRunConfig(std::string(HYLO_SOURCE_DIR) + "/config/handheld_noimu.yaml");
+  OdometryPipelineOptions options = run.PipelineOptions();
+  ASSERT_FALSE(options.estimator.use_imu);
   options.estimator.backend = GetParam().backend;
-  options.estimator.use_imu = false;
-  options.preprocess.scan_voxel_m = 0.3f;
-  options.map.voxel_size_m = 0.3f;
-  // A hand-held sensor sampled at 2 Hz turns up to ~30 deg between scans (poses.csv).
-  options.estimator.ieskf.no_imu_yaw_search_deg = 60.0;
-  options.estimator.ieskf.max_iterations = 10;
-  options.estimator.sliding_window.no_imu_yaw_search_deg = 60.0;
-  options.estimator.sliding_window.max_iterations = 10;
-  // As many plane searches per scan as the IESKF's 10 iterations; no wall-time cut in a test.
-  options.estimator.sliding_window.association_rounds = 10;
-  options.estimator.sliding_window.max_solver_time_s = 10.0;
   OdometryPipeline pipeline(options);
   io::LogReadOptions read;
   read.imu_topic.clear();
@@ -82,14 +75,14 @@ TEST_P(BalmScansNoImu, PosesStayNearTheReferenceTargetNotYetMet) {
   const double rmse_deg = std::sqrt(sum_sq_deg / compared);
   std::printf("%s, balm_scans, %zu scans: RMSE %.4f m, %.4f deg\n",
               ToString(GetParam().backend).c_str(), compared, rmse_m, rmse_deg);
-  EXPECT_LE(rmse_m, GetParam().max_rmse_m);
-  EXPECT_LE(rmse_deg, GetParam().max_rmse_deg);
+  EXPECT_LE(rmse_m, 0.02);
+  EXPECT_LE(rmse_deg, 0.2);
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Backends, BalmScansNoImu,
-    ::testing::Values(BalmCase{Estimator::Backend::kIeskf, 0.08, 2.5},
-                      BalmCase{Estimator::Backend::kSlidingWindow, 0.10, 3.0}),
+    ::testing::Values(BalmCase{Estimator::Backend::kIeskf},
+                      BalmCase{Estimator::Backend::kSlidingWindow}),
     [](const auto& info) { return ToString(info.param.backend); });
 
 }  // namespace
