@@ -4,11 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "apps/cli_test_util.h"
 #include "hylo/report/json_reader.h"
 #include "test_data.h"
 
@@ -16,18 +14,12 @@ namespace hylo {
 namespace {
 
 namespace fs = std::filesystem;
-const std::string kHylo = std::string(HYLO_BINARY_DIR) + "/apps/hylo";
 const std::string kConfig = std::string(HYLO_SOURCE_DIR) + "/config/sim_vlp16.yaml";
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
+using testing::ReadText;
+// Both streams into one log.
 int RunHylo(const std::string& args, const std::string& log) {
-  return std::system((kHylo + " " + args + " > " + log + " 2>&1").c_str());
+  return testing::RunHylo(args, log, log);
 }
 
 TEST(CompareCliTest, EveryBackendOnOneSessionInOneTable) {

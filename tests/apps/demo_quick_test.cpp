@@ -7,9 +7,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "apps/cli_test_util.h"
 #include "hylo/report/gnuplot.h"
 #include "hylo/report/json_reader.h"
 #include "test_data.h"
@@ -18,14 +17,8 @@ namespace hylo {
 namespace {
 
 namespace fs = std::filesystem;
-const std::string kHylo = std::string(HYLO_BINARY_DIR) + "/apps/hylo";
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using testing::ReadText;
 
 const io::Json* BackendRow(const io::Json& summary, const std::string& backend) {
   const io::Json* rows = summary.Find("localization_b")->Find("backends");
@@ -80,7 +73,7 @@ void CheckReportAndImages(const std::string& run) {
 TEST(DemoQuickTest, FiguresWithinBoundsReportAndImagesWritten) {
   const std::string out = testing::ScratchDir("demo_quick");
   const int status =
-      std::system((kHylo + " demo --quick --out " + out + " > " + out + "/log.txt 2>&1").c_str());
+      testing::RunHylo("demo --quick --out " + out, out + "/log.txt", out + "/log.txt");
   const std::string log = ReadText(out + "/log.txt");
   ASSERT_EQ(status, 0) << log;
   // It ends with the table and the report's path.

@@ -4,11 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
 #include <regex>
 #include <sstream>
 
+#include "apps/cli_test_util.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/trajectory_io.h"
 #include "test_data.h"
@@ -16,17 +15,11 @@
 namespace hylo {
 namespace {
 
-const std::string kHylo = std::string(HYLO_BINARY_DIR) + "/apps/hylo";
 
+using testing::ReadText;
+// stdout is not looked at; stderr goes to `stderr_path`.
 int RunHylo(const std::string& args, const std::string& stderr_path) {
-  return std::system((kHylo + " " + args + " > /dev/null 2> " + stderr_path).c_str());
-}
-
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return testing::RunHylo(args, "/dev/null", stderr_path);
 }
 
 // A number member of a flat JSON summary (NaN when absent).

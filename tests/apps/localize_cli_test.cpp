@@ -2,26 +2,18 @@
 // is wrong, before any odometry is written.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "apps/cli_test_util.h"
 #include "hylo/io/cloud_io.h"
 #include "test_data.h"
 
 namespace hylo {
 namespace {
 
-const std::string kHylo = std::string(HYLO_BINARY_DIR) + "/apps/hylo";
 const std::string kConfig = std::string(HYLO_SOURCE_DIR) + "/config/sim_vlp16.yaml";
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using testing::ReadText;
 
 class LocalizeCliTest : public ::testing::Test {
  protected:
@@ -36,11 +28,10 @@ class LocalizeCliTest : public ::testing::Test {
   // Runs `hylo localize` with `args`; returns the exit code, stderr in *error.
   int Localize(const std::string& args, std::string* error) {
     const std::string err = Path("stderr.txt");
-    const int rc = std::system((kHylo + " localize --config " + kConfig + " --out " + Path("out") +
-                                " " + args + " > /dev/null 2> " + err)
-                                   .c_str());
+    const int rc = testing::RunHylo(
+        "localize --config " + kConfig + " --out " + Path("out") + " " + args, "/dev/null", err);
     *error = ReadText(err);
-    return WEXITSTATUS(rc);
+    return rc;
   }
   std::string dir_;
 };
