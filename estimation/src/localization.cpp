@@ -39,29 +39,51 @@ bool LocalizationOptions::IsValid(std::string* why) const {
   return false;
 }
 
+namespace {
+
+// Distance from a registered point to the map surface: to the plane of its nearest map points
+// when they are planar (sliding along a wall or the ground does not count as fitting), else to
+// the nearest map point; +inf without a neighbour. `nearest` is scratch space.
+double SurfaceDistance(const Eigen::Vector3f& point_map, const registration::PlaneMatcher& planes,
+                       std::vector<registration::Neighbor>* nearest) {
+  const registration::PlaneMatcherOptions& o = planes.options();
+  planes.map().KNearest(point_map, o.num_neighbors, static_cast<float>(o.max_neighbor_distance_m),
+                        nearest);
+  if (nearest->empty()) return std::numeric_limits<double>::infinity();
+  registration::Plane plane;
+  if (static_cast<int>(nearest->size()) == o.num_neighbors &&
+      registration::FitPlane(*nearest, o.planarity_threshold_m, &plane)) {
+    return std::abs(plane.Distance(point_map.cast<double>()));
+  }
+  return std::sqrt(static_cast<double>(nearest->front().squared_distance));
+}
+
+}  // namespace
+
 ScanHealth EvaluateScanHealth(const registration::PointCloud& points_map,
-                              const registration::NeighborSearch& map, std::size_t num_matches,
+                              const registration::PlaneMatcher& planes, std::size_t num_matches,
                               const LocalizationOptions& options) {
   ScanHealth health;
   health.num_matches = num_matches;
-  if (points_map.empty() || map.Size() == 0) return health;
-  // An even stride bounds the cost (one nearest-neighbour query per checked point) while
-  // still covering the whole sweep.
-  const std::size_t stride = std::max<std::size_t>(
-      1, points_map.size() / static_cast<std::size_t>(options.health_max_points));
-  const float max_range = static_cast<float>(options.health_max_range_m);
-  const double inlier_sq = options.health_inlier_distance_m * options.health_inlier_distance_m;
+  if (points_map.empty() || planes.map().Size() == 0) return health;
+  // An even stride bounds the cost (one k-nearest query per checked point) while still
+  // covering the whole sweep.
+  const std::size_t max_points = static_cast<std::size_t>(options.health_max_points);
+  const std::size_t stride =
+      std::max<std::size_t>(1, (points_map.size() + max_points - 1) / max_points);
+  const double max_range_sq = options.health_max_range_m * options.health_max_range_m;
   std::vector<registration::Neighbor> nearest;
   std::size_t checked = 0, in_range = 0, inliers = 0;
   double sum_sq = 0.0;
   for (std::size_t i = 0; i < points_map.size(); i += stride) {
     ++checked;
-    map.KNearest(points_map[i], 1, max_range, &nearest);
+    const double distance = SurfaceDistance(points_map[i], planes, &nearest);
+    if (distance <= options.health_inlier_distance_m) ++inliers;
     if (nearest.empty()) continue;
     const double d_sq = nearest.front().squared_distance;
+    if (d_sq > max_range_sq) continue;
     ++in_range;
     sum_sq += d_sq;
-    if (d_sq <= inlier_sq) ++inliers;
   }
   health.fitness_m2 = in_range > 0 ? sum_sq / static_cast<double>(in_range)
                                    : std::numeric_limits<double>::quiet_NaN();

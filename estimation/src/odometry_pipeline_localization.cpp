@@ -148,7 +148,7 @@ void OdometryPipeline::CheckHealth(const LidarScan& scan, const DeskewedScan& sc
   for (const Eigen::Vector3f& p : scan_downsampled.points_lidar) {
     points_map.push_back((T_map_lidar * p.cast<double>()).cast<float>());
   }
-  result->health = EvaluateScanHealth(points_map, map_, result->update.num_matches, lo);
+  result->health = EvaluateScanHealth(points_map, matcher_, result->update.num_matches, lo);
   if (!result->health.good) ++counters_.scans_bad_health;
   bad_scans_in_row_ = result->health.good ? 0 : bad_scans_in_row_ + 1;
   if (status_ == Status::kLost && result->health.good) status_ = Status::kRunning;
@@ -181,7 +181,7 @@ void OdometryPipeline::CheckHealth(const LidarScan& scan, const DeskewedScan& sc
     points_map[i] =
         (T_map_lidar_refined * scan_downsampled.points_lidar[i].cast<double>()).cast<float>();
   }
-  result->health = EvaluateScanHealth(points_map, map_, result->update.num_matches, lo);
+  result->health = EvaluateScanHealth(points_map, matcher_, result->update.num_matches, lo);
 }
 
 bool OdometryPipeline::Relocalize(const LidarScan& scan, const std::vector<int64_t>& imu_knots,

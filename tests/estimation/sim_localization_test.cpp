@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -160,6 +161,15 @@ TEST_P(SimLocalization, LocalizationOnlyFromAGuessOff2mAnd20Deg) {
   EXPECT_GT(run.ate.path_length_m, 100.0);
   EXPECT_LE(run.ate.rmse_m, 0.03);
   EXPECT_LE(run.c2c.mean_m, 0.1);
+  // Tracking that stays on the true pose must not be declared lost (the health check's false
+  // alarms), even where the site changed since the prior was mapped.
+  std::vector<double> inlier_ratios;
+  for (const auto& r : run.sink->results) inlier_ratios.push_back(r.health.inlier_ratio);
+  std::sort(inlier_ratios.begin(), inlier_ratios.end());
+  std::printf("health inlier ratio over %zu scans: min %.3f, median %.3f; bad scans %zu\n",
+              inlier_ratios.size(), inlier_ratios.front(), inlier_ratios[inlier_ratios.size() / 2],
+              pipeline.counters().scans_bad_health);
+  EXPECT_FALSE(HasEvent(pipeline, LocalizationEvent::Kind::kLost));
 }
 
 TEST_P(SimLocalization, HybridModeExtendsTheMapOntoTheTrueSurfaces) {

@@ -19,6 +19,7 @@
 
 #include "hylo/registration/icp_initializer.h"
 #include "hylo/registration/neighbor_search.h"
+#include "hylo/registration/plane_matcher.h"
 #include "hylo/registration/point_types.h"
 
 namespace hylo::estimation {
@@ -32,11 +33,16 @@ struct LocalizationOptions {
   registration::IcpInitializerOptions icp;  ///< start and relocalization
 
   // --- health, computed on every scan after the update ---
-  double health_inlier_distance_m = 0.3;  ///< a registered point is an inlier when a map point
-                                          ///< lies within this, m, > 0
+  /// A registered point is an inlier when the map surface lies within this of it: the plane of
+  /// its nearest map points (the update's PlaneMatcher settings) when they are planar, else the
+  /// nearest map point, m, > 0. A point-to-point test alone passes scans several degrees off
+  /// in a dense map (balm_scans: 61 % inliers within 0.3 m at 5°, vs 29 % with this test at
+  /// 0.1 m; 96 % at the true pose).
+  double health_inlier_distance_m = 0.1;
   double health_max_range_m = 1.0;        ///< farther points are left out of the fitness, m,
                                           ///< >= health_inlier_distance_m
-  int health_max_points = 300;            ///< points checked per scan (even stride), >= 10
+  int health_max_points = 300;            ///< at most this many points checked per scan (an
+                                          ///< even stride over the sweep), >= 10
   double min_inlier_ratio = 0.5;          ///< below this a scan is bad, [0, 1]
   int min_matches = 50;                   ///< fewer plane matches: the scan is bad, >= 0
   int lost_after_scans = 5;               ///< bad scans in a row before relocalizing, >= 1
@@ -49,7 +55,7 @@ struct LocalizationOptions {
 struct ScanHealth {
   double fitness_m2 = std::numeric_limits<double>::quiet_NaN();  ///< mean squared NN distance of
                                       ///< the checked points within health_max_range_m, m²
-  double inlier_ratio = 0.0;          ///< checked points with a map point within
+  double inlier_ratio = 0.0;          ///< checked points with the map surface within
                                       ///< health_inlier_distance_m, [0, 1]
   std::size_t num_matches = 0;        ///< plane matches of the update
   bool good = false;                  ///< passes min_inlier_ratio and min_matches
@@ -74,9 +80,9 @@ struct LocalizationEvent {
 };
 
 /// The health of a scan registered into the map frame (`points_map`, taken before the scan
-/// itself is added to `map`), given the update's plane matches.
+/// itself is added to the map `planes` searches), given the update's plane matches.
 ScanHealth EvaluateScanHealth(const registration::PointCloud& points_map,
-                              const registration::NeighborSearch& map, std::size_t num_matches,
+                              const registration::PlaneMatcher& planes, std::size_t num_matches,
                               const LocalizationOptions& options);
 
 /// "initialized", "initialization_failed", "lost", "relocalized", "relocalization_failed",
