@@ -35,10 +35,14 @@ io::Json SummaryJson(const GroundArgs& args, const mapping::ClothFilterResult& r
   opt["class_distance_along_normal"] = o.class_distance_along_normal;
   opt["slope_smoothing"] = o.slope_smoothing;
   opt["slope_height_threshold_m"] = o.slope_height_threshold_m;
+  opt["slope_max_cloth_gap_m"] = o.slope_max_cloth_gap_m;  // null when infinite (no test)
   opt["slope_min_region_particles"] = o.slope_min_region_particles;
   opt["convergence_threshold_m"] = o.convergence_threshold_m;
   opt["reference_hole_fill"] = o.reference_hole_fill;
   opt["low_outlier_depth_m"] = o.low_outlier_depth_m;
+  opt["low_outlier_cell_m"] = o.low_outlier_cell_m;
+  opt["low_outlier_min_support"] = o.low_outlier_min_support;
+  opt["low_outlier_max_fraction"] = o.low_outlier_max_fraction;
   opt["gravity"] = o.gravity;
   io::Json& p = j["points"];
   p["ground"] = r.num_ground;
@@ -124,9 +128,17 @@ void AddGroundCommand(CLI::App& root) {
   cmd->add_option("--slope-threshold", o.slope_height_threshold_m,
                   "post-processing height continuity threshold, m")
       ->capture_default_str();
+  cmd->add_option("--slope-max-gap", o.slope_max_cloth_gap_m,
+                  "post-processing pins particles only where the cloth is closer than this to "
+                  "the surface (inf = no test, as the original CSF code), m")
+      ->capture_default_str();
   cmd->add_option("--low-outlier-depth", o.low_outlier_depth_m,
                   "points this far below nearly all neighbours do not hold the cloth up, m "
                   "(0 = off)")
+      ->capture_default_str();
+  cmd->add_option("--low-outlier-fraction", o.low_outlier_max_fraction,
+                  "a point is also a low outlier when fewer than this fraction of the points "
+                  "around it reach its level (0 = by count only)")
       ->capture_default_str();
   cmd->add_flag("--reference-hole-fill", o.reference_hole_fill,
                 "fill empty particles along rows/columns as the original CSF code does");

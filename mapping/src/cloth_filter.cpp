@@ -47,7 +47,7 @@ registration::PointCloud WithoutLowOutliers(const registration::PointCloud& inve
   if (options.low_outlier_depth_m <= 0.0) return inverted;
   const std::vector<uint8_t> outlier =
       cloth::FindLowOutliers(inverted, options.low_outlier_cell_m, options.low_outlier_depth_m,
-                             options.low_outlier_min_support);
+                             options.low_outlier_min_support, options.low_outlier_max_fraction);
   registration::PointCloud kept;
   kept.reserve(inverted.size());
   for (std::size_t i = 0; i < inverted.size(); ++i) {
@@ -120,6 +120,9 @@ bool ClothFilterOptions::IsValid(std::string* why) const {
   if (!(slope_height_threshold_m > 0.0)) {
     return Fail(why, "slope_height_threshold_m", slope_height_threshold_m, "> 0");
   }
+  if (!(slope_max_cloth_gap_m > 0.0)) {
+    return Fail(why, "slope_max_cloth_gap_m", slope_max_cloth_gap_m, "> 0");
+  }
   if (slope_min_region_particles < 0) {
     return Fail(why, "slope_min_region_particles", slope_min_region_particles, ">= 0");
   }
@@ -129,9 +132,13 @@ bool ClothFilterOptions::IsValid(std::string* why) const {
   if (!(low_outlier_depth_m >= 0.0)) {
     return Fail(why, "low_outlier_depth_m", low_outlier_depth_m, ">= 0");
   }
-  if (!(low_outlier_cell_m > 0.0)) return Fail(why, "low_outlier_cell_m", low_outlier_cell_m, "> 0");
+  if (!(low_outlier_cell_m > 0.0))
+    return Fail(why, "low_outlier_cell_m", low_outlier_cell_m, "> 0");
   if (low_outlier_min_support < 1) {
     return Fail(why, "low_outlier_min_support", low_outlier_min_support, ">= 1");
+  }
+  if (!(low_outlier_max_fraction >= 0.0 && low_outlier_max_fraction < 1.0)) {
+    return Fail(why, "low_outlier_max_fraction", low_outlier_max_fraction, "in [0, 1)");
   }
   if (!(gravity > 0.0)) return Fail(why, "gravity", gravity, "> 0");
   if (!(damping >= 0.0 && damping < 1.0)) return Fail(why, "damping", damping, "in [0, 1)");
@@ -170,9 +177,9 @@ ClothFilterResult FilterGroundLocal(const registration::PointCloud& points_local
   cloth::Cloth cloth(grid, top_z + kStartClearanceM, DynamicsFrom(options));
   Simulate(options, surface.height_m, progress, &cloth, &result);
   if (options.slope_smoothing) {
-    result.num_pinned_by_slope =
-        cloth::SmoothSteepSlopes(surface.height_m, options.slope_height_threshold_m,
-                                 options.slope_min_region_particles, &cloth);
+    result.num_pinned_by_slope = cloth::SmoothSteepSlopes(
+        surface.height_m, options.slope_height_threshold_m, options.slope_max_cloth_gap_m,
+        options.slope_min_region_particles, &cloth);
   }
   Classify(points_local, cloth, options.class_threshold_m, options.class_distance_along_normal,
            &result);

@@ -41,8 +41,8 @@ std::vector<uint8_t> LargeMovableRegions(const Cloth& cloth, std::size_t min_reg
 }  // namespace
 
 std::size_t SmoothSteepSlopes(const std::vector<double>& surface_height_m,
-                              double height_threshold_m, std::size_t min_region_particles,
-                              Cloth* cloth) {
+                              double height_threshold_m, double max_cloth_gap_m,
+                              std::size_t min_region_particles, Cloth* cloth) {
   HYLO_CHECK(cloth != nullptr && surface_height_m.size() == cloth->grid().Size(),
              "one surface height per particle");
   const ClothGrid& grid = cloth->grid();
@@ -67,6 +67,8 @@ std::size_t SmoothSteepSlopes(const std::vector<double>& surface_height_m,
       const std::size_t to = grid.Index(c, r);
       if (!candidate[to] || !cloth->IsMovable(to)) continue;
       if (std::abs(surface_height_m[to] - surface_height_m[from]) >= height_threshold_m) continue;
+      // Inverted frame: the cloth rests on or above the surface; a large gap is an object.
+      if (cloth->heights()[to] - surface_height_m[to] >= max_cloth_gap_m) continue;
       cloth->Pin(to, surface_height_m[to]);
       queue.push_back(to);
       ++pinned;

@@ -21,18 +21,19 @@ namespace hylo::mapping {
 namespace {
 
 // Regression bounds on the ISPRS mean total error over the 7 samples, %. One parameter set for
-// all samples (no per-file tuning). Measured: 6.59 with the defaults (RI 3) and 6.19 with RI 1
-// (the paper's setting for rugged terrain); 7.19 / 6.71 before the distance to the cloth was
-// measured to its surface instead of vertically. The paper reports 4.38 for these 7 samples
-// with GR/RI/ST chosen per sample. Where the rest comes from (type I / type II per sample, see
-// the printed table): samp11 type I on its steep slope and samp61 type I along narrow
-// embankments (ridges the rigid cloth bridges), samp41 type I in courtyards enclosed by
-// buildings (the cloth cannot drop into them), samp52 type I where the data ends on a slope
-// plus type II from low vegetation, samp21 type II from the bridge the slope post-processing
-// pins to the road. The bounds sit ~10 % above the measured figures so that a change making
-// the filter worse fails, without flapping on harmless reorderings.
-constexpr double kIsprsMeanTotalBoundDefaultsPercent = 7.3;
-constexpr double kIsprsMeanTotalBoundRuggedPercent = 6.8;
+// all samples (no per-file tuning). Measured: 6.09 with the defaults (RI 3) and 5.32 with RI 1
+// (the paper's setting for rugged terrain); 6.59 / 6.19 before the slope post-processing left
+// alone particles the cloth spans by more than slope_max_cloth_gap_m (samp21's bridge) and the
+// low-outlier test used a fraction of a 30 m neighbourhood (samp41's multipath cluster); 7.19 /
+// 6.71 before the distance to the cloth was measured to its surface. The paper reports 4.38 for
+// these 7 samples with GR/RI/ST chosen per sample. What is left (type I / type II per sample,
+// see the printed table): samp11 type I on its steep slopes and samp61 type I along embankments
+// (ridges 1-8 m high that the cloth spans, floating more than the gap limit above them),
+// samp52 type I on its steep eastern slope and along the data's upper edge plus type II from
+// low vegetation. The bounds sit ~10 % above the measured figures so that a change making the
+// filter worse fails, without flapping on harmless reorderings.
+constexpr double kIsprsMeanTotalBoundDefaultsPercent = 6.7;
+constexpr double kIsprsMeanTotalBoundRuggedPercent = 5.9;
 // Agreement with the reference implementation's split of csf_sample when run as that release
 // runs (its hole filling and its dT^2-twice gravity). Target 98 %; measured 99.65 %.
 constexpr double kCsfSampleMinAgreement = 0.99;
@@ -191,6 +192,76 @@ TEST(ClothFilter, DistanceToTheClothIsMeasuredToItsSurface) {
   }
 }
 
+// A bridge: a road embankment ramps up 6 m over 30 m (0.2 m per particle, a slope the
+// post-processing follows) onto a 40 m deck that hides the valley floor under it. The deck
+// joins the ramps without a step, so the height test alone walks onto it; the cloth spans the
+// deck 6 m above its surface, so the gap test stops there (ISPRS samp21).
+TEST(ClothFilter, SlopePostProcessingDoesNotPinABridgeDeck) {
+  const auto ramp = [](float x) {
+    if (x < 20.f || x > 120.f) return 0.f;
+    if (x < 50.f) return 0.2f * (x - 20.f);
+    if (x > 90.f) return 0.2f * (120.f - x);
+    return 6.f;
+  };
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> uniform(0.f, 140.f);
+  std::normal_distribution<float> noise(0.f, 0.03f);
+  LabelledCloud cloud;
+  for (int i = 0; i < 140 * 140 * 2; ++i) {
+    const float x = uniform(rng), y = uniform(rng);
+    const bool on_road = y > 60.f && y < 75.f;
+    const bool deck = on_road && x >= 50.f && x <= 90.f;
+    cloud.points.emplace_back(x, y, (on_road ? ramp(x) : 0.f) + noise(rng));
+    cloud.is_ground.push_back(!deck);
+  }
+  ClothFilterOptions options;
+  const Agreement with_gap = Compare(cloud, FilterGroundLocal(cloud.points, options));
+  EXPECT_GE(with_gap.objects_removed, 0.95);
+  EXPECT_GE(with_gap.ground_kept, 0.96);
+  // Without the gap test (the reference release) the deck is called ground: the test above can
+  // fail, and it fails for the reason it names.
+  options.slope_max_cloth_gap_m = std::numeric_limits<double>::infinity();
+  const Agreement without_gap = Compare(cloud, FilterGroundLocal(cloud.points, options));
+  EXPECT_LT(without_gap.objects_removed, 0.5);
+}
+
+// Multipath returns 30 m under the terrain, in a cluster of 30 points that support each other
+// (as under a building in ISPRS samp41): by count they pass any small support test, so only the
+// fraction keeps the cloth from hanging on them like a tent over the terrain around.
+TEST(ClothFilter, ClusterOfLowOutliersDoesNotHoldTheClothUp) {
+  LabelledCloud cloud = MakeScene(
+      100.f, 1.f, [](float x, float) { return 0.01f * x; }, {}, 0.05f, 8);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> spot(45.f, 60.f);
+  for (int i = 0; i < 30; ++i) {
+    const float x = spot(rng), y = spot(rng);
+    cloud.points.emplace_back(x, y, 0.01f * x - 30.f);
+    cloud.is_ground.push_back(false);
+  }
+  ClothFilterOptions options;
+  const ClothFilterResult result = FilterGroundLocal(cloud.points, options);
+  ASSERT_TRUE(result.ok) << result.message;
+  EXPECT_GE(result.num_low_outliers, 30u);
+  EXPECT_GE(Compare(cloud, result).ground_kept, 0.99) << result.message;
+  options.low_outlier_max_fraction = 0.0;  // the count alone
+  const ClothFilterResult by_count = FilterGroundLocal(cloud.points, options);
+  EXPECT_LT(Compare(cloud, by_count).ground_kept, 0.95) << by_count.message;
+}
+
+// Airborne density at ISPRS sites 5 and 6 (0.2 points/m^2): a count of neighbours in small cells
+// took valid terrain points for outliers there (500-900 per sample); the fraction does not.
+TEST(ClothFilter, SparseCleanTerrainHasNoLowOutliers) {
+  for (const float density : {0.2f, 4.f}) {
+    const LabelledCloud cloud = MakeScene(
+        120.f, density, [](float x, float y) { return 0.05f * x + 2.f * std::sin(0.05f * y); }, {},
+        0.05f, 10);
+    const ClothFilterResult result = FilterGroundLocal(cloud.points, ClothFilterOptions{});
+    ASSERT_TRUE(result.ok) << result.message;
+    EXPECT_EQ(result.num_low_outliers, 0u) << density << " points/m^2";
+    EXPECT_GE(Compare(cloud, result).ground_kept, 0.99) << density << " points/m^2";
+  }
+}
+
 TEST(ClothFilter, EmptyAndAllNanCloudsAreReportedNotClassified) {
   const ClothFilterResult empty = FilterGroundLocal({}, ClothFilterOptions{});
   EXPECT_FALSE(empty.ok);
@@ -309,37 +380,62 @@ Confusion EvaluateIsprsSample(const std::string& name, const ClothFilterOptions&
   return confusion;
 }
 
-double PrintIsprsTable(const char* title, const ClothFilterOptions& options) {
-  const std::vector<std::pair<std::string, double>> published = {
+struct IsprsSample {
+  std::string name;
+  double published_total_percent;  ///< CSF paper, Zhang et al. 2016
+};
+const std::vector<IsprsSample>& IsprsSamples() {
+  static const std::vector<IsprsSample> samples = {
       {"samp11", 12.01}, {"samp21", 3.42}, {"samp31", 1.61}, {"samp41", 5.14},
       {"samp51", 3.08},  {"samp52", 3.93}, {"samp61", 1.49}};
-  double sum_total = 0, sum_published = 0;
+  return samples;
+}
+
+/// Prints the table and returns the total error per sample (%, in IsprsSamples() order).
+std::vector<double> PrintIsprsTable(const char* title, const ClothFilterOptions& options) {
+  std::vector<double> totals;
+  double sum_published = 0;
   std::printf("ISPRS, %s\nsample   typeI%%  typeII%%  total%%  kappa%%  | CSF paper total%%\n",
               title);
-  for (const auto& [name, paper_total] : published) {
-    const Confusion c = EvaluateIsprsSample(name, options);
-    std::printf("%-7s %7.2f %8.2f %7.2f %7.2f  | %6.2f\n", name.c_str(), 100 * c.TypeI(),
-                100 * c.TypeII(), 100 * c.Total(), 100 * c.Kappa(), paper_total);
-    sum_total += 100 * c.Total();
-    sum_published += paper_total;
+  for (const IsprsSample& sample : IsprsSamples()) {
+    const Confusion c = EvaluateIsprsSample(sample.name, options);
+    std::printf("%-7s %7.2f %8.2f %7.2f %7.2f  | %6.2f\n", sample.name.c_str(), 100 * c.TypeI(),
+                100 * c.TypeII(), 100 * c.Total(), 100 * c.Kappa(), sample.published_total_percent);
+    totals.push_back(100 * c.Total());
+    sum_published += sample.published_total_percent;
   }
-  const double mean_total = sum_total / published.size();
-  std::printf("mean    %24.2f  | %6.2f (paper, these 7; 4.39 over all 15)\n", mean_total,
-              sum_published / published.size());
-  return mean_total;
+  double sum_total = 0;
+  for (const double total : totals) sum_total += total;
+  std::printf("mean    %24.2f  | %6.2f (paper, these 7; 4.39 over all 15)\n",
+              sum_total / totals.size(), sum_published / totals.size());
+  return totals;
+}
+
+double Mean(const std::vector<double>& values) {
+  double sum = 0;
+  for (const double v : values) sum += v;
+  return sum / values.size();
 }
 
 // One parameter set for every sample: the paper tuned GR/RI/ST per sample for its table.
 TEST(ClothFilterIsprs, ErrorsPerSampleNextToThePublishedOnes) {
   HYLO_REQUIRE_DATA("isprs/samp11-utm.pcd");
-  const double defaults_mean = PrintIsprsTable("defaults (GR 1, RI 3, ST on)", {});
+  const std::vector<double> defaults = PrintIsprsTable("defaults (GR 1, RI 3, ST on)", {});
   ClothFilterOptions rugged;
   rugged.rigidness = 1;
-  const double rugged_mean = PrintIsprsTable("rugged-terrain setting (GR 1, RI 1, ST on)", rugged);
-  RecordProperty("isprs_mean_total_error_defaults_percent", std::to_string(defaults_mean));
-  RecordProperty("isprs_mean_total_error_ri1_percent", std::to_string(rugged_mean));
-  EXPECT_LE(defaults_mean, kIsprsMeanTotalBoundDefaultsPercent);
-  EXPECT_LE(rugged_mean, kIsprsMeanTotalBoundRuggedPercent);
+  const std::vector<double> soft =
+      PrintIsprsTable("rugged-terrain setting (GR 1, RI 1, ST on)", rugged);
+  RecordProperty("isprs_mean_total_error_defaults_percent", std::to_string(Mean(defaults)));
+  RecordProperty("isprs_mean_total_error_ri1_percent", std::to_string(Mean(soft)));
+  EXPECT_LE(Mean(defaults), kIsprsMeanTotalBoundDefaultsPercent);
+  EXPECT_LE(Mean(soft), kIsprsMeanTotalBoundRuggedPercent);
+  // What the gap test and the outlier fraction fixed, against the paper's own per-sample figure
+  // (its GR/RI/ST chosen for that sample; ours one setting): samp21's bridge (6.0 / 5.7 %
+  // before) with both settings, samp41's multipath cluster (4.5 % before) with RI 1.
+  const std::size_t samp21 = 1, samp41 = 3;
+  EXPECT_LE(defaults[samp21], IsprsSamples()[samp21].published_total_percent);
+  EXPECT_LE(soft[samp21], IsprsSamples()[samp21].published_total_percent);
+  EXPECT_LE(soft[samp41], IsprsSamples()[samp41].published_total_percent);
 }
 
 // The reference implementation's split of csf_sample (rigidness 3, slope smoothing, GR 1,
@@ -367,6 +463,7 @@ TEST(ClothFilterCsfSample, AgreesWithTheReferenceSplit) {
   options.reference_hole_fill = true;
   options.class_distance_along_normal = false;
   options.gravity = 0.2 * options.time_step * options.time_step;
+  options.slope_max_cloth_gap_m = std::numeric_limits<double>::infinity();
   const ClothFilterResult result = FilterGround(cloud.positions, options);
   ASSERT_TRUE(result.ok) << result.message;
   std::size_t agree = 0;

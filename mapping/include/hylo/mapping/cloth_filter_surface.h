@@ -41,9 +41,11 @@ std::size_t FillHoles(const ClothGrid& grid, std::vector<double>* height_m);
 std::size_t FillHolesAsReference(const ClothGrid& grid, std::vector<double>* height_m);
 
 /// Flags (1) the points of `points_inverted` that stand more than `depth_m` above (inverted:
-/// below, in the original cloud) all but fewer than `min_support` of the other points in the
-/// 3x3 block of `cell_m` cells around them: isolated low outliers, which the cloth would hang on.
-std::vector<uint8_t> FindLowOutliers(const registration::PointCloud& points_inverted,
-                                     double cell_m, double depth_m, int min_support);
+/// below, in the original cloud) nearly all other points in the 3x3 block of `cell_m` cells
+/// around them: fewer than `min_support` of those points, or fewer than `max_fraction` of them,
+/// reach within `depth_m` of the point. These are low outliers (single or in clusters), which
+/// the cloth would hang on.
+std::vector<uint8_t> FindLowOutliers(const registration::PointCloud& points_inverted, double cell_m,
+                                     double depth_m, int min_support, double max_fraction);
 
 }  // namespace hylo::mapping::cloth
