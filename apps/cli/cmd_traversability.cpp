@@ -18,6 +18,7 @@ struct TraversabilityArgs {
   std::string ground_path, objects_path, out_dir, json_path;
   mapping::TraversabilityOptions options;
   bool no_cell_grade = false;
+  bool estimate_edge_cells = false;
 };
 
 io::Json OptionsJson(const mapping::TraversabilityOptions& o) {
@@ -26,6 +27,8 @@ io::Json OptionsJson(const mapping::TraversabilityOptions& o) {
   j["max_hole_size_m"] = o.elevation.max_hole_size_m;
   j["normal_radius_m"] = o.surface.normal_radius_m;
   j["fallback_radius_m"] = o.surface.fallback_radius_m;
+  j["scale_consistency_sigmas"] = o.surface.scale_consistency_sigmas;
+  j["unknown_at_data_edge"] = o.surface.unknown_at_data_edge;
   j["step_radius_m"] = o.surface.step_radius_m;
   j["max_slope_deg"] = o.cost.max_slope_deg;
   j["max_step_m"] = o.cost.max_step_m;
@@ -59,7 +62,10 @@ io::Json SummaryJson(const TraversabilityArgs& args, const mapping::Traversabili
   cells["holes_too_large"] = s.elevation.holes_too_large;
   cells["without_plane"] = s.surface.cells_too_few_points + s.surface.cells_degenerate;
   cells["plane_from_fallback_radius"] = s.surface.cells_fallback;
+  cells["normal_from_finer_block"] = s.surface.cells_finer_scale;
+  cells["unknown_at_data_edge"] = s.surface.cells_at_data_edge;
   cells["lethal_from_obstacles"] = s.obstacles.lethal_cells;
+  j["surface_noise_m"] = s.surface.noise_m;
   io::Json& slope = j["slope_deg"];
   slope["cells"] = s.slope.cells;
   slope["mean"] = s.slope.mean_deg;
@@ -106,8 +112,9 @@ void Run(const TraversabilityArgs& args) {
   std::printf("grid %d x %d at %.3f m, corner (%.3f, %.3f)\n", map.grid.geometry().width,
               map.grid.geometry().height, map.grid.geometry().resolution_m,
               map.grid.geometry().CornerWorld().x(), map.grid.geometry().CornerWorld().y());
-  std::printf("cells: free %zu, cost %zu, lethal %zu (obstacles %zu), unknown %zu\n", n[1], n[2],
-              n[3], map.summary.obstacles.lethal_cells, n[0]);
+  std::printf("cells: free %zu, cost %zu, lethal %zu (obstacles %zu), unknown %zu (%zu at a data "
+              "edge)\n", n[1], n[2], n[3], map.summary.obstacles.lethal_cells, n[0],
+              map.summary.surface.cells_at_data_edge);
   std::printf("slope: mean %.2f, median %.2f, p95 %.2f, max %.2f deg over %zu cells\n",
               map.summary.slope.mean_deg, map.summary.slope.median_deg, map.summary.slope.p95_deg,
               map.summary.slope.max_deg, map.summary.slope.cells);
@@ -134,12 +141,20 @@ void AddTraversabilityCommand(CLI::App& root) {
   cmd->add_flag("--no-cell-grade", args.no_cell_grade,
                 "do not mark cells lethal from the cell-scale elevation gradient (only the "
                 "footprint slope, step and roughness)");
+  cmd->add_option("--scale-sigmas", args.options.surface.scale_consistency_sigmas,
+                  "adaptive scale: a block of cells replaces the footprint plane when they differ "
+                  "by more than this many tilt standard deviations (0: always the footprint)")
+      ->capture_default_str();
+  cmd->add_flag("--estimate-edge-cells", args.estimate_edge_cells,
+                "also give a slope to cells next to a cell without elevation (default: "
+                "unknown, the unseen neighbour may hide a drop)");
   cmd->add_option("--max-hole", args.options.elevation.max_hole_size_m,
                   "fill enclosed holes up to this width, m (0: none)")
       ->capture_default_str();
   cmd->add_option("--json", args.json_path, "write a JSON summary here");
   cmd->callback([] {
     args.options.cost.lethal_on_cell_grade = !args.no_cell_grade;
+    args.options.surface.unknown_at_data_edge = !args.estimate_edge_cells;
     Run(args);
   });
 }

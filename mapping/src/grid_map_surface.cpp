@@ -1,11 +1,12 @@
 #include "hylo/mapping/grid_map_surface.h"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>  // cross
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
+#include "grid_map_plane_fit.h"
 #include "hylo/common/check.h"
 
 namespace hylo::mapping {
@@ -14,127 +15,117 @@ namespace {
 constexpr float kNoData = std::numeric_limits<float>::quiet_NaN();
 constexpr double kRadToDeg = 180.0 / M_PI;
 
-/// First and second moments of a set of points, so a neighbourhood's covariance is the sum
-/// of its cells' moments (each cell's points are read once, not once per neighbour).
-/// `n` is the sum of the weights, `count` the number of points behind it.
-struct Moments {
-  double n = 0.0;
-  double count = 0.0;
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d sum_outer = Eigen::Matrix3d::Zero();
+using internal::FitPlane;
+using internal::FitStatus;
+using internal::Kernel;
+using internal::Moments;
+using internal::PlaneFit;
 
-  void Add(const Moments& o, double weight) {
-    n += weight * o.n;
-    count += o.count;
-    sum += weight * o.sum;
-    sum_outer += weight * o.sum_outer;
+/// The square blocks of 1, 2 x 2 and 3 x 3 cells that contain a cell, uniformly weighted:
+/// next to a break (a trench wall, a bank's edge) some of them lie on the cell's side only,
+/// and a wall or a floor one or two cells wide fits in one (non-centred neighbourhoods, as in
+/// normal estimation near sharp features).
+std::vector<Kernel> ContainingBlocks() {
+  std::vector<Kernel> blocks;
+  for (int size = 1; size <= 3; ++size) {
+    for (int r0 = 1 - size; r0 <= 0; ++r0) {
+      for (int c0 = 1 - size; c0 <= 0; ++c0) {
+        Kernel block;
+        for (int dr = r0; dr < r0 + size; ++dr) {
+          for (int dc = c0; dc < c0 + size; ++dc) block.offsets.emplace_back(dc, dr);
+        }
+        block.weights.assign(block.offsets.size(), 1.0);
+        blocks.push_back(std::move(block));
+      }
+    }
   }
-};
+  return blocks;
+}
 
-/// Per-cell moments with x, y relative to the cell centre, so the sums stay small and the
-/// covariance E[pp^T] - mean mean^T does not cancel large numbers.
-std::vector<Moments> CellMoments(const registration::PointCloud& ground_local,
-                                 const CellPoints& bins, const GridGeometry& g) {
-  std::vector<Moments> moments(g.NumCells());
+/// Of the blocks containing `cell`, the most planar: the smallest unbiased residual variance
+/// (the plane's 3 parameters taken off the point count, so small blocks are not favoured).
+bool FitBestBlock(const std::vector<Moments>& moments, const GridGeometry& g, std::size_t cell,
+                  const std::vector<Kernel>& blocks, const SurfaceOptions& options,
+                  PlaneFit* best) {
+  double best_variance = std::numeric_limits<double>::infinity();
+  for (const Kernel& block : blocks) {
+    const Moments around = internal::Gather(moments, g, cell, block);
+    PlaneFit fit;
+    if (FitPlane(around, options, g.resolution_m, &fit) != FitStatus::kOk) continue;
+    const double variance =
+        fit.rms_distance_m * fit.rms_distance_m * around.count / (around.count - 3.0);
+    if (variance < best_variance) {
+      best_variance = variance;
+      *best = fit;
+    }
+  }
+  return std::isfinite(best_variance);
+}
+
+/// True when one of the cell's four neighbours has no elevation (no ground point and not a
+/// filled small hole) or lies outside the grid: the unseen side may hide a drop, e.g. the
+/// occluded wall of a trench whose lip alone was hit, that the points around cannot show.
+bool AtDataEdge(const GridGeometry& g, const std::vector<float>& elevation, std::size_t cell) {
+  static const int kDc[4] = {1, -1, 0, 0}, kDr[4] = {0, 0, 1, -1};
+  for (int k = 0; k < 4; ++k) {
+    const int col = g.Col(cell) + kDc[k], row = g.Row(cell) + kDr[k];
+    if (!g.Contains(col, row) || std::isnan(elevation[g.Index(col, row)])) return true;
+  }
+  return false;
+}
+
+/// Angle between two unit normals, rad.
+double AngleRad(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+/// Intersection of confidence intervals (Katkovnik 1999; Goldenshluger & Nemirovski 1997):
+/// walking from the finest scale up, a scale is kept while its normal agrees with every
+/// finer one within `sigmas` times the sum of their tilt standard deviations; the last
+/// scale kept is the largest over which the surface is still one plane, so a flat cell gets
+/// the footprint's low-noise normal and a cell on a bank or trench wall its own. Returns the
+/// index into `fits` of the chosen fit (fits with `ok` false are skipped).
+std::size_t SelectScale(const std::vector<PlaneFit>& fits, const std::vector<char>& ok,
+                        double sigma_m, double sigmas) {
+  std::size_t chosen = fits.size();
+  for (std::size_t k = 0; k < fits.size(); ++k) {
+    if (!ok[k]) continue;
+    const double std_k = fits[k].TiltStdRad(sigma_m);
+    for (std::size_t j = 0; j < k; ++j) {
+      if (!ok[j]) continue;
+      const double bound = sigmas * (fits[j].TiltStdRad(sigma_m) + std_k);
+      if (AngleRad(fits[j].normal, fits[k].normal) > bound) return chosen;
+    }
+    chosen = k;
+  }
+  return chosen;
+}
+
+/// Height noise of the map: the median RMS distance of the footprint fits to their planes.
+/// Most cells are smooth at the footprint scale, so the median is the noise (gravel, range
+/// noise), not the shape.
+double MedianFootprintRms(const std::vector<Moments>& moments, const GridGeometry& g,
+                          const std::vector<float>& elevation, const Kernel& footprint,
+                          const SurfaceOptions& options) {
+  std::vector<double> rms;
   for (std::size_t cell = 0; cell < g.NumCells(); ++cell) {
-    const Eigen::Vector2d centre = g.CentreLocal(g.Col(cell), g.Row(cell));
-    Moments& m = moments[cell];
-    for (std::size_t k = bins.offsets[cell]; k < bins.offsets[cell + 1]; ++k) {
-      Eigen::Vector3d p = ground_local[bins.point_indices[k]].cast<double>();
-      p.head<2>() -= centre;
-      m.n += 1.0;
-      m.count += 1.0;
-      m.sum += p;
-      m.sum_outer += p * p.transpose();
+    if (std::isnan(elevation[cell]) || moments[cell].count == 0) continue;
+    PlaneFit fit;
+    if (FitPlane(internal::Gather(moments, g, cell, footprint), options, g.resolution_m, &fit) ==
+        FitStatus::kOk) {
+      rms.push_back(fit.rms_distance_m);
     }
   }
-  return moments;
-}
-
-/// Moments of `m` re-expressed after moving their xy frame by `shift` (p -> p + shift).
-Moments Shifted(const Moments& m, const Eigen::Vector2d& shift) {
-  Moments out = m;
-  const Eigen::Vector3d s(shift.x(), shift.y(), 0.0);
-  out.sum = m.sum + m.n * s;
-  out.sum_outer =
-      m.sum_outer + m.sum * s.transpose() + s * m.sum.transpose() + m.n * s * s.transpose();
-  return out;
-}
-
-/// Cell offsets (dc, dr) whose centres are within `radius_cells`, always including the four
-/// direct neighbours when `at_least_neighbours`.
-std::vector<Eigen::Vector2i> Window(double radius_cells, bool at_least_neighbours) {
-  std::vector<Eigen::Vector2i> offsets;
-  const double r = at_least_neighbours ? std::max(radius_cells, 1.0) : radius_cells;
-  const int k = static_cast<int>(std::floor(r));
-  for (int dr = -k; dr <= k; ++dr) {
-    for (int dc = -k; dc <= k; ++dc) {
-      if (dc * dc + dr * dr <= r * r + 1e-9) offsets.emplace_back(dc, dr);
-    }
-  }
-  return offsets;
-}
-
-/// A neighbourhood for the plane fit: cell offsets with their weights. Biweight kernel
-/// (1 - (d/h)^2)^2 on the centre distance d with h one cell beyond the radius, so the outermost
-/// cells still count a little: a smooth kernel keeps the normal of a curved or broken surface
-/// centred on the cell instead of the footprint's mean (weighted PCA, e.g. Pauly et al. 2002).
-struct Kernel {
-  std::vector<Eigen::Vector2i> offsets;
-  std::vector<double> weights;
-};
-
-Kernel MakeKernel(double radius_m, double resolution_m) {
-  Kernel kernel;
-  kernel.offsets = Window(radius_m / resolution_m, true);
-  const double h = radius_m / resolution_m + 1.0;  // cells
-  for (const Eigen::Vector2i& d : kernel.offsets) {
-    const double q = d.cast<double>().squaredNorm() / (h * h);
-    kernel.weights.push_back((1.0 - q) * (1.0 - q));
-  }
-  return kernel;
-}
-
-Moments Gather(const std::vector<Moments>& moments, const GridGeometry& g, std::size_t cell,
-               const Kernel& kernel) {
-  Moments around;
-  for (std::size_t k = 0; k < kernel.offsets.size(); ++k) {
-    const Eigen::Vector2i& d = kernel.offsets[k];
-    const int col = g.Col(cell) + d.x(), row = g.Row(cell) + d.y();
-    if (!g.Contains(col, row)) continue;
-    const Moments& m = moments[g.Index(col, row)];
-    if (m.n > 0) around.Add(Shifted(m, d.cast<double>() * g.resolution_m), kernel.weights[k]);
-  }
-  return around;
-}
-
-struct PlaneFit {
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // z up
-  double rms_distance_m = 0.0;
-};
-
-enum class FitStatus { kOk, kTooFewPoints, kDegenerate };
-
-FitStatus FitPlane(const Moments& m, const SurfaceOptions& options, double resolution_m,
-                   PlaneFit* fit) {
-  if (m.count < options.min_points) return FitStatus::kTooFewPoints;
-  const Eigen::Vector3d mean = m.sum / m.n;
-  const Eigen::Matrix3d covariance = m.sum_outer / m.n - mean * mean.transpose();
-  // The horizontal spread must cover both axes, or the tilt across a line is unobserved.
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> xy(covariance.topLeftCorner<2, 2>());
-  const double min_spread = options.min_spread_cells * resolution_m;
-  if (xy.eigenvalues()(0) < min_spread * min_spread) return FitStatus::kDegenerate;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> pca(covariance);
-  fit->normal = pca.eigenvectors().col(0);  // smallest eigenvalue: the plane normal
-  if (fit->normal.z() < 0.0) fit->normal = -fit->normal;
-  fit->rms_distance_m = std::sqrt(std::max(pca.eigenvalues()(0), 0.0));
-  return FitStatus::kOk;
+  if (rms.empty()) return 0.0;
+  std::nth_element(rms.begin(), rms.begin() + rms.size() / 2, rms.end());
+  return rms[rms.size() / 2];
 }
 
 void ComputeStep(const GridGeometry& g, double step_radius_m, GridMap* grid) {
   const std::vector<float>& elevation = grid->Layer(layers::kElevation);
   std::vector<float>& step = grid->AddLayer(layers::kStep, kNoData);
-  const std::vector<Eigen::Vector2i> window = Window(step_radius_m / g.resolution_m, true);
+  const std::vector<Eigen::Vector2i> window =
+      internal::Window(step_radius_m / g.resolution_m, true);
   for (std::size_t cell = 0; cell < g.NumCells(); ++cell) {
     if (std::isnan(elevation[cell])) continue;
     float max_difference = 0.f;
@@ -162,6 +153,9 @@ bool SurfaceOptions::IsValid(std::string* why) const {
     os << "min_points = " << min_points << " must be >= 3 (a plane needs 3 points)";
   } else if (!(min_spread_cells >= 0.0)) {
     os << "min_spread_cells = " << min_spread_cells << " must be >= 0";
+  } else if (!(scale_consistency_sigmas >= 0.0) || !std::isfinite(scale_consistency_sigmas)) {
+    os << "scale_consistency_sigmas = " << scale_consistency_sigmas
+       << " must be finite and >= 0";
   } else if (!(step_radius_m > 0.0) || !std::isfinite(step_radius_m)) {
     os << "step_radius_m = " << step_radius_m << " must be finite and > 0";
   }
@@ -179,19 +173,40 @@ SurfaceSummary ComputeSurfaceLayers(const registration::PointCloud& ground_local
   const char* names[6] = {layers::kNormalX, layers::kNormalY,   layers::kNormalZ,
                           layers::kSlope,   layers::kRoughness, layers::kStep};
   for (int i = 0; i < 5; ++i) out[i] = &grid->AddLayer(names[i], kNoData);
-  const std::vector<Moments> moments = CellMoments(ground_local, bins, g);
-  const Kernel footprint = MakeKernel(options.normal_radius_m, g.resolution_m);
-  const Kernel fallback = MakeKernel(options.fallback_radius_m, g.resolution_m);
+  const std::vector<Moments> moments = internal::CellMoments(ground_local, bins, g);
+  const std::vector<Kernel> blocks = ContainingBlocks();
+  const Kernel footprint = internal::MakeKernel(options.normal_radius_m, g.resolution_m);
+  const Kernel fallback = internal::MakeKernel(options.fallback_radius_m, g.resolution_m);
   SurfaceSummary summary;
+  summary.noise_m = MedianFootprintRms(moments, g, elevation, footprint, options);
+  const bool adaptive = options.scale_consistency_sigmas > 0.0;
+  std::vector<PlaneFit> fits(2);  // finest first: the most planar block, the footprint
+  std::vector<char> ok(2, 0);
   for (std::size_t cell = 0; cell < g.NumCells(); ++cell) {
     if (std::isnan(elevation[cell])) continue;
-    PlaneFit fit;
-    FitStatus status = FitPlane(Gather(moments, g, cell, footprint), options, g.resolution_m, &fit);
-    // A sparse footprint (far from the sensor, one scan line) borrows from a wider ring: a
-    // smoother slope is more useful to a planner than an unknown cell.
-    if (status != FitStatus::kOk && options.fallback_radius_m > options.normal_radius_m) {
-      status = FitPlane(Gather(moments, g, cell, fallback), options, g.resolution_m, &fit);
+    if (options.unknown_at_data_edge && AtDataEdge(g, elevation, cell)) {
+      ++summary.cells_at_data_edge;
+      continue;
+    }
+    if (adaptive) ok[0] = FitBestBlock(moments, g, cell, blocks, options, &fits[0]);
+    ok[1] = FitPlane(internal::Gather(moments, g, cell, footprint), options, g.resolution_m,
+                     &fits[1]) == FitStatus::kOk;
+    PlaneFit fit = fits.back();  // the footprint: roughness is a property at the vehicle scale
+    FitStatus status = ok.back() ? FitStatus::kOk : FitStatus::kTooFewPoints;
+    if (ok.back()) {
+      const std::size_t k =
+          SelectScale(fits, ok, summary.noise_m, options.scale_consistency_sigmas);
+      fit.normal = fits[k].normal;
+      summary.cells_finer_scale += k == 0;
+    } else if (options.fallback_radius_m > options.normal_radius_m) {
+      // A sparse footprint (far from the sensor, one scan line) borrows from a wider ring: a
+      // smoother slope is more useful to a planner than an unknown cell.
+      status = FitPlane(internal::Gather(moments, g, cell, fallback), options, g.resolution_m,
+                        &fit);
       summary.cells_fallback += status == FitStatus::kOk;
+    } else {
+      status = FitPlane(internal::Gather(moments, g, cell, footprint), options, g.resolution_m,
+                        &fit);
     }
     if (status == FitStatus::kTooFewPoints) ++summary.cells_too_few_points;
     if (status == FitStatus::kDegenerate) ++summary.cells_degenerate;

@@ -4,6 +4,8 @@
 //
 //   hylo_site_mapping_eval [--quick] [--seed N] [--duration S] [--stride N]
 //                          [--lidar vlp16|rs16] [--resolution M] [--out DIR] [--json PATH]
+//                          [--cells]   (per-cell CSV tables of the slope error in --out)
+//                          [--only-craft | --only-slope] [--mls-radius M] [--order N]
 // Full: the simulator's default session A (180 s, 0.2 deg columns), every scan. --quick: the
 // simulator's coarse settings (SimulationOptions::Fast: 1 deg columns, 0.4 m terrain) for 20 s.
 
@@ -31,6 +33,11 @@ Json ThicknessJson(const Thickness& t) {
   j["rms_m"] = t.rms_m;
   j["rms_ground_m"] = t.rms_ground_m;
   j["rms_object_m"] = t.rms_object_m;
+  j["rms_thin_object_m"] = t.rms_thin_m;
+  j["rms_thick_box_m"] = t.rms_thick_box_m;
+  j["rms_thick_cylinder_m"] = t.rms_thick_cylinder_m;
+  j["fraction_thin_object"] = t.fraction_thin;
+  j["fraction_ground"] = t.fraction_ground;
   j["p95_m"] = t.p95_m;
   j["fraction_beyond_10cm"] = t.beyond_10cm;
   return j;
@@ -40,12 +47,18 @@ Json SlopeJson(const SlopeFigures& s) {
   Json j = Json::MakeObject();
   j["measured_cells"] = s.measured_cells;
   j["cells_compared"] = s.slope.cells;
+  j["coverage"] = s.Coverage();
+  j["cells_unknown_at_data_edge"] = s.cells_at_data_edge;
+  j["cells_normal_from_finer_block"] = s.cells_finer_scale;
+  j["noise_m"] = s.noise_m;
   j["slope_rmse_deg"] = s.slope.rmse;
   j["slope_bias_deg"] = s.slope.mean_error;
   j["slope_max_abs_error_deg"] = s.slope.max_abs_error;
   j["steep_cells"] = s.steep.steep_cells;
   j["steep_marked_lethal"] = s.steep.marked_lethal;
   j["steep_fraction_marked"] = s.steep.fraction_marked;
+  j["steep_unknown"] = s.steep.steep_unknown;
+  j["slope_rmse_vs_footprint_truth_deg"] = s.slope_footprint.rmse;
   j["seconds"] = s.seconds;
   return j;
 }
@@ -65,7 +78,10 @@ Json FiguresJson(const SiteEvalOptions& o, const SiteFigures& f) {
   c["raw"] = ThicknessJson(f.craft.raw);
   c["sampled"] = ThicknessJson(f.craft.sampled);
   c["crafted"] = ThicknessJson(f.craft.crafted);
+  c["sampled_points"] = f.craft.sampled_points;
   c["crafted_points"] = f.craft.crafted_points;
+  c["dropped_by_mls"] = f.craft.sampled_points - f.craft.crafted_points;
+
   c["thickness_ratio"] = f.craft.ThicknessRatio();
   c["thickness_ratio_sampled_over_crafted"] = f.craft.sampled.rms_m / f.craft.crafted.rms_m;
   c["seconds_whole_map"] = f.craft.seconds;
@@ -89,17 +105,19 @@ Json FiguresJson(const SiteEvalOptions& o, const SiteFigures& f) {
   t["max_slope_deg"] = o.traversability.cost.max_slope_deg;
   t["from_cloth_filter_ground"] = SlopeJson(f.slope_csf);
   t["from_true_ground"] = SlopeJson(f.slope_truth);
+  t["from_true_ground_edge_cells_estimated"] = SlopeJson(f.slope_truth_all_cells);
   return j;
 }
 
 void PrintThickness(const char* name, const Thickness& t) {
-  std::printf("  %-26s %9zu %9.4f %9.4f %9.4f %9.4f %8.3f%%\n", name, t.points, t.rms_m,
-              t.rms_ground_m, t.rms_object_m, t.p95_m, 100 * t.beyond_10cm);
+  std::printf("  %-26s %9zu %9.4f %9.4f %9.4f %9.4f %9.4f %8.3f%%\n", name, t.points, t.rms_m,
+              t.rms_ground_m, t.rms_object_m, t.rms_thin_m, t.p95_m, 100 * t.beyond_10cm);
 }
 
 void PrintSlope(const char* name, const SlopeFigures& s) {
-  std::printf("  %-26s %8zu %8zu %8.3f %8.3f %8zu %8.2f%%\n", name, s.measured_cells, s.slope.cells,
-              s.slope.rmse, s.slope.mean_error, s.steep.steep_cells, 100 * s.steep.fraction_marked);
+  std::printf("  %-26s %8zu %8zu %7.2f%% %8.3f %8.3f %8zu %8.2f%% %8zu\n", name, s.measured_cells,
+              s.slope.cells, 100 * s.Coverage(), s.slope.rmse, s.slope.mean_error,
+              s.steep.steep_cells, 100 * s.steep.fraction_marked, s.steep.steep_unknown);
 }
 
 void PrintFigures(const SiteEvalOptions& o, const SiteFigures& f) {
@@ -108,15 +126,23 @@ void PrintFigures(const SiteEvalOptions& o, const SiteFigures& f) {
               f.map.simulate_seconds);
   std::printf("\n1. crafting (voxel %.3f m, MLS radius %.3f m, order %d): distance to true surface\n",
               o.craft.voxel_size_m, o.craft.mls_search_radius_m, o.craft.polynomial_order);
-  std::printf("  %-26s %9s %9s %9s %9s %9s %9s\n", "cloud", "measured", "rms_m", "ground_m",
-              "object_m", "p95_m", ">10cm");
+  std::printf("  %-26s %9s %9s %9s %9s %9s %9s %9s\n", "cloud", "measured", "rms_m", "ground_m",
+              "object_m", "thin_m", "p95_m", ">10cm");
   PrintThickness("raw accumulated", f.craft.raw);
   PrintThickness("uniform sampling only", f.craft.sampled);
   PrintThickness("crafted (sampling + MLS)", f.craft.crafted);
+  std::printf("  points nearest the ground %.1f%%, a thin (< 0.1 m) primitive %.1f%% (raw map)\n",
+              100 * f.craft.raw.fraction_ground, 100 * f.craft.raw.fraction_thin);
+  std::printf("  thicker primitives, rms raw -> crafted: boxes %.4f -> %.4f m, cylinders %.4f -> "
+              "%.4f m\n", f.craft.raw.rms_thick_box_m, f.craft.crafted.rms_thick_box_m,
+              f.craft.raw.rms_thick_cylinder_m, f.craft.crafted.rms_thick_cylinder_m);
   std::printf("  thickness ratio raw/crafted %.2f (target >= 2), sampled/crafted %.2f; "
               "%zu crafted points in %.1f s\n",
               f.craft.ThicknessRatio(), f.craft.sampled.rms_m / f.craft.crafted.rms_m,
               f.craft.crafted_points, f.craft.seconds);
+  std::printf("  MLS input %zu points: %zu dropped (too few neighbours: absent from the map "
+              "and from the figures)\n",
+              f.craft.sampled_points, f.craft.sampled_points - f.craft.crafted_points);
   std::printf("  time on %zu points: 1 thread %.2f s, 2 threads %.2f s (shared machine)\n",
               f.craft.timing_points, f.craft.seconds_1_thread, f.craft.seconds_2_threads);
   const GroundFigures& g = f.ground;
@@ -127,16 +153,23 @@ void PrintFigures(const SiteEvalOptions& o, const SiteFigures& f) {
               g.seconds);
   std::printf("\n3. traversability (%.2f m cells, limit %.1f deg) vs site_slope.txt\n",
               o.traversability.resolution_m, o.traversability.cost.max_slope_deg);
-  std::printf("  %-26s %8s %8s %8s %8s %8s %9s\n", "ground from", "measured", "compared",
-              "rmse_deg", "bias_deg", "steep", "marked");
+  std::printf("  %-26s %8s %8s %8s %8s %8s %8s %9s %8s\n", "ground from", "measured",
+              "compared", "coverage", "rmse_deg", "bias_deg", "steep", "marked", "steep_unk");
   PrintSlope("cloth filter (the chain)", f.slope_csf);
   PrintSlope("true labels", f.slope_truth);
+  PrintSlope("true labels, edges estimated", f.slope_truth_all_cells);
+  std::printf("  (compared: cells with ground points and a slope; coverage = compared / measured;\n"
+              "   true labels: %zu cells unknown at a data edge, %zu normals from a block finer\n"
+              "   than the footprint, height noise %.4f m)\n",
+              f.slope_truth.cells_at_data_edge, f.slope_truth.cells_finer_scale,
+              f.slope_truth.noise_m);
 }
 
 bool ParseArgs(int argc, char** argv, SiteEvalOptions* o, std::string* json_path) {
   bool quick = false;
-  double duration_s = -1, resolution_m = -1;
-  int stride = 0;
+  double duration_s = -1, resolution_m = -1, mls_radius_m = -1;
+  int stride = 0, order = -1;
+  std::string only;
   std::string lidar;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -149,17 +182,28 @@ bool ParseArgs(int argc, char** argv, SiteEvalOptions* o, std::string* json_path
     else if (a == "--resolution" && has_value) resolution_m = std::atof(argv[++i]);
     else if (a == "--out" && has_value) o->out_dir = argv[++i];
     else if (a == "--json" && has_value) *json_path = argv[++i];
+    else if (a == "--cells") o->write_cell_tables = true;
+    else if (a == "--only-craft") only = "craft";
+    else if (a == "--only-slope") only = "slope";
+    else if (a == "--mls-radius" && has_value) mls_radius_m = std::atof(argv[++i]);
+    else if (a == "--order" && has_value) order = std::atoi(argv[++i]);
     else {
       std::fprintf(stderr, "unknown argument '%s'\n", a.c_str());
       return false;
     }
   }
   const uint64_t seed = o->sim.seed;
+  const bool cells = o->write_cell_tables;
   if (quick) *o = hylo::site_eval::QuickOptions(o->out_dir);
   o->sim.seed = seed;
+  o->write_cell_tables = cells;
   if (duration_s > 0) o->sim.duration_a_s = duration_s;
   if (stride != 0) o->scan_stride = stride;
   if (resolution_m > 0) o->traversability.resolution_m = resolution_m;
+  if (mls_radius_m > 0) o->craft.mls_search_radius_m = mls_radius_m;
+  if (order >= 0) o->craft.polynomial_order = order;
+  o->measure_craft = only != "slope";
+  o->measure_ground_and_slope = only != "craft";
   if (!lidar.empty() && !hylo::sim::ParseLidarModel(lidar, &o->sim.lidar.model)) {
     std::fprintf(stderr, "unknown lidar '%s'\n", lidar.c_str());
     return false;

@@ -29,21 +29,36 @@ registration::PointCloud ToFloat(const std::vector<Eigen::Vector3d>& points) {
   return out;
 }
 
+// True for a primitive thinner than 0.1 m across (a cable, a lattice beam, a busbar): a
+// surface of a few centimetres that an MLS fit over several centimetres cannot follow.
+bool IsThin(const sim::Primitive& p) {
+  return p.shape == sim::Primitive::Shape::kCylinder ? 2.0 * p.radius_m < 0.1
+                                                     : 2.0 * p.half_extent_m.minCoeff() < 0.1;
+}
+
 // RMS and tail of the distances of `points` (every `stride`-th) to the true surfaces.
 Thickness MeasureThickness(const sim::SurfaceDistanceField& field,
+                           const std::vector<sim::Primitive>& primitives,
                            const std::vector<Eigen::Vector3d>& points, std::size_t max_samples) {
   Thickness t;
   const std::size_t stride =
       max_samples == 0 ? 1 : std::max<std::size_t>(1, points.size() / max_samples);
   std::vector<double> distances;
-  double sum_sq = 0, sum_sq_ground = 0, sum_sq_object = 0;
-  std::size_t ground = 0;
+  double sum_sq = 0, sum_sq_ground = 0, sum_sq_object = 0, sum_sq_thin = 0, sum_sq_box = 0;
+  std::size_t ground = 0, thin = 0, box = 0;
   for (std::size_t i = 0; i < points.size(); i += stride) {
     const sim::SurfaceDistance d = field.Nearest(points[i]);
     const double d2 = d.distance_m * d.distance_m;
     sum_sq += d2;
     (d.IsGround() ? sum_sq_ground : sum_sq_object) += d2;
     ground += d.IsGround();
+    if (!d.IsGround() && IsThin(primitives[d.primitive])) {
+      sum_sq_thin += d2;
+      ++thin;
+    } else if (!d.IsGround() && primitives[d.primitive].shape == sim::Primitive::Shape::kBox) {
+      sum_sq_box += d2;
+      ++box;
+    }
     distances.push_back(d.distance_m);
   }
   t.points = distances.size();
@@ -52,6 +67,13 @@ Thickness MeasureThickness(const sim::SurfaceDistanceField& field,
   t.rms_m = std::sqrt(sum_sq / t.points);
   t.rms_ground_m = ground ? std::sqrt(sum_sq_ground / ground) : 0.0;
   t.rms_object_m = objects ? std::sqrt(sum_sq_object / objects) : 0.0;
+  t.rms_thin_m = thin ? std::sqrt(sum_sq_thin / thin) : 0.0;
+  t.fraction_thin = double(thin) / t.points;
+  t.rms_thick_box_m = box ? std::sqrt(sum_sq_box / box) : 0.0;
+  const std::size_t cylinders = objects - thin - box;
+  t.rms_thick_cylinder_m =
+      cylinders ? std::sqrt((sum_sq_object - sum_sq_thin - sum_sq_box) / cylinders) : 0.0;
+  t.fraction_ground = double(ground) / t.points;
   t.beyond_10cm = double(std::count_if(distances.begin(), distances.end(),
                                        [](double d) { return d > 0.1; })) / t.points;
   const std::size_t k95 = static_cast<std::size_t>(0.95 * (t.points - 1));
@@ -87,20 +109,22 @@ double CraftSeconds(const std::vector<Eigen::Vector3d>& points, mapping::CraftOp
 }
 
 CraftFigures MeasureCrafting(const SiteEvalOptions& options, const AccumulatedMap& map,
-                             const sim::SurfaceDistanceField& field) {
+                             const sim::SurfaceDistanceField& field,
+                             const std::vector<sim::Primitive>& primitives) {
   CraftFigures f;
-  f.raw = MeasureThickness(field, map.points_map, options.thickness_samples);
+  f.raw = MeasureThickness(field, primitives, map.points_map, options.thickness_samples);
   std::vector<Eigen::Vector3d> sampled;
   for (std::size_t i : registration::UniformSampleIndices(
            ToFloat(map.points_map), static_cast<float>(options.craft.voxel_size_m))) {
     sampled.push_back(map.points_map[i]);
   }
-  f.sampled = MeasureThickness(field, sampled, options.thickness_samples);
+  f.sampled = MeasureThickness(field, primitives, sampled, options.thickness_samples);
   const auto start = Clock::now();
   const mapping::CraftResult crafted = mapping::CraftMap(map.points_map, options.craft);
   f.seconds = SecondsSince(start);
   f.crafted_points = crafted.points_world.size();
-  f.crafted = MeasureThickness(field, crafted.points_world, options.thickness_samples);
+  f.sampled_points = crafted.num_sampled;
+  f.crafted = MeasureThickness(field, primitives, crafted.points_world, options.thickness_samples);
   if (options.timing_points > 0) {
     const std::vector<Eigen::Vector3d> timing = TimingMap(map, options.timing_points);
     f.timing_points = timing.size();
@@ -110,22 +134,68 @@ CraftFigures MeasureCrafting(const SiteEvalOptions& options, const AccumulatedMa
   return f;
 }
 
+// Cells of the 8-neighbourhood without ground points (outside the grid counts as none).
+int EmptyNeighbours(const mapping::GridMap& grid, std::size_t cell) {
+  const mapping::GridGeometry& g = grid.geometry();
+  const std::vector<float>& count = grid.Layer(mapping::layers::kPointCount);
+  int empty = 0;
+  for (int dr = -1; dr <= 1; ++dr) {
+    for (int dc = -1; dc <= 1; ++dc) {
+      const int col = g.Col(cell) + dc, row = g.Row(cell) + dr;
+      empty += !g.Contains(col, row) || count[g.Index(col, row)] == 0.f;
+    }
+  }
+  return empty;
+}
+
+// One row per cell with ground points or a slope: where the error sits, for analysis.
+void WriteCellTable(const std::string& path, const mapping::TraversabilityMap& map,
+                    const mapping::TruthField& truth, const mapping::TruthField& footprint) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write '" + path + "'");
+  const mapping::GridMap& grid = map.grid;
+  const mapping::GridGeometry& g = grid.geometry();
+  namespace L = mapping::layers;
+  out << "col,row,x,y,points,filled,elevation,slope,roughness,step,class,truth,footprint_truth,"
+         "empty_neighbours\n";
+  for (std::size_t c = 0; c < g.NumCells(); ++c) {
+    const float count = grid.Layer(L::kPointCount)[c];
+    const float slope = grid.Layer(L::kSlope)[c];
+    if (count == 0.f && std::isnan(slope)) continue;
+    const Eigen::Vector2d xy = g.CentreWorld(g.Col(c), g.Row(c));
+    out << g.Col(c) << ',' << g.Row(c) << ',' << xy.x() << ',' << xy.y() << ',' << count << ','
+        << grid.Layer(L::kFilled)[c] << ',' << grid.Layer(L::kElevation)[c] << ',' << slope << ','
+        << grid.Layer(L::kRoughness)[c] << ',' << grid.Layer(L::kStep)[c] << ','
+        << static_cast<int>(map.classes[c]) << ',' << truth(xy.x(), xy.y()) << ','
+        << footprint(xy.x(), xy.y()) << ',' << EmptyNeighbours(grid, c) << '\n';
+  }
+}
+
 SlopeFigures MeasureSlope(const SiteEvalOptions& options, const mapping::TruthField& truth,
                           const mapping::TruthField& footprint_truth,
                           const std::vector<Eigen::Vector3d>& ground,
-                          const std::vector<Eigen::Vector3d>& objects) {
+                          const std::vector<Eigen::Vector3d>& objects, const char* name,
+                          bool estimate_edge_cells = false) {
   SlopeFigures f;
+  mapping::TraversabilityOptions traversability = options.traversability;
+  if (estimate_edge_cells) traversability.surface.unknown_at_data_edge = false;
   const auto start = Clock::now();
   const mapping::TraversabilityMap map =
-      mapping::ComputeTraversability(ground, objects, options.traversability);
+      mapping::ComputeTraversability(ground, objects, traversability);
   f.seconds = SecondsSince(start);
   f.measured_cells = map.summary.elevation.measured_cells;
+  f.cells_at_data_edge = map.summary.surface.cells_at_data_edge;
+  f.cells_finer_scale = map.summary.surface.cells_finer_scale;
+  f.noise_m = map.summary.surface.noise_m;
   f.slope = mapping::CompareSlope(map.grid, truth);
   f.steep = mapping::CheckSteepCells(map.grid, map.classes, truth,
                                      options.traversability.cost.max_slope_deg);
   f.slope_footprint = mapping::CompareSlope(map.grid, footprint_truth);
   f.steep_footprint = mapping::CheckSteepCells(map.grid, map.classes, footprint_truth,
                                                options.traversability.cost.max_slope_deg);
+  if (options.write_cell_tables) {
+    WriteCellTable(options.out_dir + "/cells_" + name + ".csv", map, truth, footprint_truth);
+  }
   return f;
 }
 
@@ -272,7 +342,10 @@ SiteFigures EvaluateSite(const SiteEvalOptions& options) {
   const sim::World world(site.terrain, sim::SessionPrimitives(site, sim::SessionId::kA),
                          options.sim.index_cell_m);
   const sim::SurfaceDistanceField field(world);
-  figures.craft = MeasureCrafting(options, figures.map, field);
+  if (options.measure_craft) {
+    figures.craft = MeasureCrafting(options, figures.map, field, world.primitives());
+  }
+  if (!options.measure_ground_and_slope) return figures;
 
   // Ground filter on one return per voxel: original returns, so each keeps its hit label.
   const std::vector<std::size_t> kept = registration::UniformSampleIndices(
@@ -301,8 +374,12 @@ SiteFigures EvaluateSite(const SiteEvalOptions& options) {
   const mapping::TruthField truth = ReadSimSlopeGrid(slope_path);
   const mapping::TruthField footprint =
       FootprintSlope(site, options.traversability.surface.normal_radius_m);
-  figures.slope_csf = MeasureSlope(options, truth, footprint, csf_ground, csf_objects);
-  figures.slope_truth = MeasureSlope(options, truth, footprint, true_ground, true_objects);
+  figures.slope_csf =
+      MeasureSlope(options, truth, footprint, csf_ground, csf_objects, "cloth_filter");
+  figures.slope_truth =
+      MeasureSlope(options, truth, footprint, true_ground, true_objects, "true_labels");
+  figures.slope_truth_all_cells = MeasureSlope(options, truth, footprint, true_ground,
+                                               true_objects, "true_labels_all_cells", true);
   return figures;
 }
 

@@ -32,6 +32,11 @@ struct SiteEvalOptions {
   mapping::ClothFilterOptions cloth; ///< `hylo ground` defaults (the paper's)
   mapping::TraversabilityOptions traversability;  ///< `hylo traversability` defaults
   std::string out_dir;               ///< site_slope.txt (and nothing else) is written here
+  bool measure_craft = true;         ///< part 1 (crafting); false leaves CraftFigures empty
+  bool measure_ground_and_slope = true;  ///< parts 2 and 3; false leaves their figures empty
+  bool write_cell_tables = false;    ///< also write cells_<ground source>.csv to out_dir: one
+                                     ///< row per cell with data (estimate, truths, counts) for
+                                     ///< finding where the slope error sits
 
   bool IsValid(std::string* why) const;
 };
@@ -50,6 +55,12 @@ struct Thickness {
   double rms_m = 0.0;         ///< RMS distance ("thickness"), m
   double rms_ground_m = 0.0;  ///< of the points whose nearest surface is the ground, m
   double rms_object_m = 0.0;  ///< of the points nearest to a primitive, m
+  double rms_thin_m = 0.0;    ///< of the points nearest to a primitive thinner than 0.1 m
+                              ///< (cables, lattice beams, busbars), m
+  double rms_thick_box_m = 0.0;       ///< of the points nearest to a thicker box, m
+  double rms_thick_cylinder_m = 0.0;  ///< of the points nearest to a thicker cylinder, m
+  double fraction_thin = 0.0;    ///< of the points measured, nearest to a thin primitive
+  double fraction_ground = 0.0;  ///< of the points measured, nearest to the ground
   double p95_m = 0.0;         ///< 95th percentile distance, m
   double beyond_10cm = 0.0;   ///< fraction of points farther than 0.1 m
 };
@@ -57,6 +68,7 @@ struct Thickness {
 struct CraftFigures {
   Thickness raw, sampled, crafted;  ///< input map, after uniform sampling only, after MLS
   std::size_t crafted_points = 0;
+  std::size_t sampled_points = 0;      ///< after uniform sampling (MLS input)
   double seconds = 0.0;                ///< wall time of CraftMap on the whole map, s
   std::size_t timing_points = 0;       ///< size of the timed map
   double seconds_1_thread = 0.0;       ///< wall time (sampling + MLS), s
@@ -85,6 +97,14 @@ struct SlopeFigures {
   mapping::LayerComparison slope_footprint;
   mapping::SteepCellCheck steep_footprint;
   std::size_t measured_cells = 0;
+  std::size_t cells_at_data_edge = 0;  ///< cells left unknown at a data edge
+  std::size_t cells_finer_scale = 0;   ///< cells whose normal came from a block, not the
+                                       ///< footprint (adaptive scale)
+  double noise_m = 0.0;                ///< SurfaceSummary::noise_m
+  /// Cells with data that got a slope estimate: slope.cells / measured_cells.
+  double Coverage() const {
+    return measured_cells > 0 ? static_cast<double>(slope.cells) / measured_cells : 0.0;
+  }
   double seconds = 0.0;
 };
 
@@ -95,6 +115,9 @@ struct SiteFigures {
   std::size_t ground_filter_points = 0;
   SlopeFigures slope_csf;    ///< traversability from the cloth filter's ground (the chain)
   SlopeFigures slope_truth;  ///< from the truly ground returns (isolates the grid's error)
+  /// As slope_truth with SurfaceOptions::unknown_at_data_edge off: every cell estimated, so
+  /// the price of the cells left unknown at data edges is on the table.
+  SlopeFigures slope_truth_all_cells;
 };
 
 /// The short version (CI): the simulator's coarse settings (SimulationOptions::Fast) for a

@@ -140,7 +140,7 @@ TEST(Traversability, StepIsLethalAlongItsEdgeOnly) {
       edge_lethal += map.classes[c] == CellClass::kLethal;
       EXPECT_NEAR(map.grid.Layer(layers::kStep)[c], 0.5, 0.05)
           << "cell " << g.Col(c) << "," << g.Row(c) << " of " << g.width << "x" << g.height;
-    } else if (std::abs(x) > 1.0) {
+    } else if (std::abs(x) > 1.0 && map.classes[c] != CellClass::kUnknown) {  // not at an edge
       ++far;
       far_free += map.classes[c] == CellClass::kFree;
     }
@@ -183,7 +183,9 @@ TEST(Traversability, NarrowBankIsLethalThroughTheCellGrade) {
                 use_grade ? "on" : "off", on_bank_lethal, on_bank, flat_free, flat);
     ASSERT_GT(on_bank, 30u);
     EXPECT_GE(flat_free, 0.99 * flat);
-    if (use_grade) EXPECT_GE(on_bank_lethal, 0.95 * on_bank);
+    if (use_grade) {
+      EXPECT_GE(on_bank_lethal, 0.95 * on_bank);
+    }
   }
 }
 
@@ -197,7 +199,7 @@ TEST(Traversability, RoughnessMatchesVerticalNoise) {
   const TraversabilityMap map = ComputeTraversability(ground, {}, TestOptions());
   const LayerComparison roughness =
       CompareLayer(map.grid, layers::kRoughness, [](double, double) { return 0.03; });
-  EXPECT_GT(roughness.cells, 900u);
+  EXPECT_GE(roughness.cells, 900u);  // 32 x 32 cells less the border ring (data edge)
   EXPECT_NEAR(roughness.mean_error, 0.0, 0.005);  // sqrt of the smallest eigenvalue ~ sigma
 }
 
@@ -256,11 +258,19 @@ TEST(Traversability, SingleHeightEverywhereIsFlatAndFree) {
     for (int j = 0; j < 40; ++j) ground.emplace_back(0.1 * i + 0.03, 0.1 * j + 0.07, 12.5);
   const TraversabilityMap map = ComputeTraversability(ground, {}, TestOptions());
   const auto& counts = map.summary.cells_per_class;
+  const GridGeometry& g = map.grid.geometry();
   EXPECT_EQ(counts[static_cast<int>(CellClass::kLethal)], 0u);
   EXPECT_EQ(counts[static_cast<int>(CellClass::kCost)], 0u);
-  EXPECT_EQ(counts[static_cast<int>(CellClass::kFree)], map.grid.geometry().NumCells());
+  // The border ring of the grid touches unseen land (a data edge): unknown; the rest free.
+  const std::size_t interior = static_cast<std::size_t>(g.width - 2) * (g.height - 2);
+  EXPECT_EQ(counts[static_cast<int>(CellClass::kFree)], interior);
+  EXPECT_EQ(map.summary.surface.cells_at_data_edge, g.NumCells() - interior);
   EXPECT_LT(map.summary.slope.max_deg, 1e-4);  // acos rounding near 1 only
-  for (const float r : map.grid.Layer(layers::kRoughness)) EXPECT_LT(r, 1e-4);
+  for (const float r : map.grid.Layer(layers::kRoughness)) {
+    if (!std::isnan(r)) {
+      EXPECT_LT(r, 1e-4);  // NaN: the unknown border ring
+    }
+  }
 }
 
 TEST(Traversability, UtmCoordinatesGiveTheSameResultAsNearZero) {
@@ -315,14 +325,16 @@ TEST(Traversability, EmptyOrAllNaNGroundIsAClearError) {
 }
 
 TEST(Traversability, TooFewPointsForAPlaneAreUnknownNotFree) {
-  const TraversabilityMap map = ComputeTraversability({{3.0, 4.0, 5.0}}, {}, TestOptions());
+  TraversabilityOptions options = TestOptions();
+  options.surface.unknown_at_data_edge = false;  // the plane fit itself must refuse
+  const TraversabilityMap map = ComputeTraversability({{3.0, 4.0, 5.0}}, {}, options);
   ASSERT_EQ(map.grid.geometry().NumCells(), 1u);
   EXPECT_EQ(map.classes[0], CellClass::kUnknown);
   EXPECT_EQ(map.summary.surface.cells_too_few_points, 1u);
   // Points on one line (a single scan ring): the tilt across it is unobserved.
   Points line;
   for (int i = 0; i < 50; ++i) line.emplace_back(0.02 * i, 0.1, 0.0);
-  const TraversabilityMap on_line = ComputeTraversability(line, {}, TestOptions());
+  const TraversabilityMap on_line = ComputeTraversability(line, {}, options);
   EXPECT_EQ(on_line.summary.surface.cells_with_normal, 0u);
   EXPECT_GT(on_line.summary.surface.cells_degenerate, 0u);
 }
@@ -335,12 +347,14 @@ TEST(Traversability, SparseFootprintFallsBackToTheWiderNeighbourhood) {
   for (double x = -3.0; x <= 3.0; x += 0.45) {
     for (double y = -3.0; y <= 3.0; y += 0.45) sparse.emplace_back(x, y, plane.height(x, y));
   }
-  const TraversabilityMap map = ComputeTraversability(sparse, {}, TestOptions());
+  TraversabilityOptions options = TestOptions();
+  options.surface.unknown_at_data_edge = false;  // every point is alone in its cell
+  const TraversabilityMap map = ComputeTraversability(sparse, {}, options);
   EXPECT_GT(map.summary.surface.cells_fallback, 100u);
   const LayerComparison slope = CompareSlope(map.grid, TrueSlope(plane, Eigen::Vector3d::Zero()));
   EXPECT_EQ(slope.cells, sparse.size());  // one point per cell, none left unknown
   EXPECT_LE(slope.rmse, 0.5);
-  TraversabilityOptions no_fallback = TestOptions();
+  TraversabilityOptions no_fallback = options;
   no_fallback.surface.fallback_radius_m = no_fallback.surface.normal_radius_m;
   const TraversabilityMap strict = ComputeTraversability(sparse, {}, no_fallback);
   EXPECT_EQ(strict.summary.surface.cells_fallback, 0u);
@@ -369,6 +383,10 @@ TEST(Traversability, InvalidOptionsNameTheField) {
   options.surface.fallback_radius_m = 0.2;  // below normal_radius_m
   EXPECT_FALSE(options.IsValid(&why));
   EXPECT_NE(why.find("surface.fallback_radius_m = 0.2"), std::string::npos) << why;
+  options = TestOptions();
+  options.surface.scale_consistency_sigmas = -1.0;
+  EXPECT_FALSE(options.IsValid(&why));
+  EXPECT_NE(why.find("surface.scale_consistency_sigmas = -1"), std::string::npos) << why;
   options = TestOptions();
   options.cost.obstacle_max_height_m = 0.1;
   EXPECT_FALSE(options.IsValid(&why));

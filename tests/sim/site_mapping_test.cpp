@@ -75,38 +75,39 @@ TEST_F(SiteMappingTest, GroundLabelsAgreeWithTheHitSurfaces) {
 }
 
 // Issue 8 asks for a slope RMSE <= 2 deg and >= 95 % of the steep cells marked, on cells with
-// a slope estimate. Measured here (seed 1, quick, 0.2 m cells, 0.5 m footprint with a 1 m
-// fallback): RMSE 3.8 deg on the true ground returns (16.5 deg from the cloth filter's ground,
-// whose low object points tilt the cells they fall in), 89 % of the steep cells marked, 35
-// steep cells with points left unknown (673 with the former 0.3 m fit without fallback). Most
-// of the squared error sits on trench walls and bank edges steeper than 30 deg, which the
-// one-cell truth resolves and a footprint-scale fit smooths; against the clean terrain's slope
-// at the footprint scale the RMSE is 2.9 deg. Full session: 3.45 deg, 93.9 % marked, 3 steep
-// cells unknown, 1.78 deg at the footprint scale. Since cells whose cell-scale grade exceeds
-// the limit are lethal too (CostOptions::lethal_on_cell_grade): 89.2 % marked here, 95.1 % on
-// the full session (the issue's bound met there, not on this short run); most steep cells
-// still missed border a cell without ground points (the occluded side of a trench wall), where
-// no central difference exists. The RMSE bound is not met here, so it is not asserted; these
-// guard the figures against regressions.
+// a slope estimate. The estimate adapts its scale (the most planar block of 1 to 3 x 3 cells
+// replaces the 0.5 m footprint where they disagree beyond the noise) and leaves cells next to
+// a cell without ground points unknown (the unseen side may hide a drop, as at a trench lip
+// whose wall the sensor never hit). Measured here (seed 1, quick: 1 deg columns, so rings
+// leave gaps): RMSE 1.56 deg on 58 % of the cells with data, 3.46 deg on 97 % with the edge
+// cells estimated. Full session (hylo_site_mapping_eval): 1.60 deg on 92.5 %, 97.1 % of the
+// steep cells marked; 2.45 deg on 97.7 % with the edge cells estimated. These bounds guard the
+// quick figures against regressions; the full run's figures are the issue's.
 TEST_F(SiteMappingTest, SlopeFollowsTheTrueSlopeGrid) {
   const SlopeFigures& s = figures_->slope_truth;
-  for (const SlopeFigures* f : {&figures_->slope_truth, &figures_->slope_csf}) {
+  const SlopeFigures& all = figures_->slope_truth_all_cells;
+  const SlopeFigures& csf = figures_->slope_csf;
+  for (const SlopeFigures* f : {&s, &all, &csf}) {
     std::printf(
-        "slope rmse %.2f deg (bias %.2f, %zu cells), steep marked %zu/%zu (%zu unknown); "
-        "at footprint scale rmse %.2f deg, steep marked %zu/%zu\n",
-        f->slope.rmse, f->slope.mean_error, f->slope.cells, f->steep.marked_lethal,
-        f->steep.steep_cells, f->steep.steep_unknown, f->slope_footprint.rmse,
-        f->steep_footprint.marked_lethal, f->steep_footprint.steep_cells);
+        "slope rmse %.2f deg (bias %.2f, %zu cells, coverage %.1f %%), steep marked %zu/%zu "
+        "(%zu unknown); at footprint scale rmse %.2f deg, steep marked %zu/%zu\n",
+        f->slope.rmse, f->slope.mean_error, f->slope.cells, 100.0 * f->Coverage(),
+        f->steep.marked_lethal, f->steep.steep_cells, f->steep.steep_unknown,
+        f->slope_footprint.rmse, f->steep_footprint.marked_lethal,
+        f->steep_footprint.steep_cells);
   }
   ASSERT_GT(s.slope.cells, 1000u);
-  EXPECT_LE(s.slope.rmse, 4.2);
+  EXPECT_LE(s.slope.rmse, 2.0);
+  EXPECT_GE(s.Coverage(), 0.5);  // the price of the edge rule on this sparse run
   EXPECT_LE(std::abs(s.slope.mean_error), 1.0);
-  EXPECT_LE(s.slope_footprint.rmse, 3.2);
   ASSERT_GT(s.steep.steep_cells, 100u);
   EXPECT_GE(s.steep.fraction_marked, 0.85);
-  EXPECT_LE(s.steep.steep_unknown, s.steep.steep_cells / 20);  // the fallback leaves few unknown
-  EXPECT_GT(figures_->slope_csf.slope.cells, 1000u);
-  EXPECT_GE(figures_->slope_csf.steep.fraction_marked, 0.85);
+  // With every edge cell estimated, few cells with ground points stay without a slope.
+  EXPECT_GE(all.Coverage(), 0.95);
+  EXPECT_LE(all.slope.rmse, 4.2);
+  EXPECT_LE(all.steep.steep_unknown, all.steep.steep_cells / 20);
+  EXPECT_GT(csf.slope.cells, 1000u);
+  EXPECT_GE(csf.steep.fraction_marked, 0.85);
 }
 
 // The distance field the thickness rests on: zero on the surfaces the rays hit, and the

@@ -5,6 +5,13 @@
 // the cell's own surface dominates), the slope (the normal's angle to vertical), the roughness
 // (RMS distance of those points to their plane) and the step height (largest elevation
 // difference to the neighbouring cells).
+//
+// Near a break (a trench wall, a bank's edge) the centred footprint mixes two surfaces and
+// gives a slope that belongs to neither. The scale is therefore adaptive: of the square blocks
+// of 1, 2 x 2 and 3 x 3 cells that contain the cell, the most planar one is fitted too, and
+// its normal replaces the footprint's when the two disagree by more than their noise allows
+// (intersection of confidence intervals, Katkovnik 1999). A cell next to a cell without
+// elevation is left unknown (unknown_at_data_edge): the unseen side may hide a drop.
 
 #include <cstddef>
 #include <string>
@@ -26,6 +33,17 @@ struct SurfaceOptions {
   double min_spread_cells = 0.1;   ///< smallest horizontal standard deviation of the fitted
                                    ///< points, in cells: below it the points are (nearly) one
                                    ///< line and the plane's tilt across it is not observed
+  double scale_consistency_sigmas = 2.0;  ///< adaptive scale: the most planar block of 1 to
+                                   ///< 3 x 3 cells containing the cell replaces the footprint
+                                   ///< plane when their normals differ by more than this many
+                                   ///< tilt standard deviations (their sum; per-cell noise =
+                                   ///< SurfaceSummary::noise_m); 0 = always the footprint
+  bool unknown_at_data_edge = true;  ///< no normal, slope or roughness (unknown) for a cell
+                                   ///< one of whose four neighbours has no elevation (no
+                                   ///< ground point, and not a small hole filled by
+                                   ///< ElevationOptions::max_hole_size_m): the unseen side may
+                                   ///< hide a drop, such as the occluded wall of a trench
+                                   ///< whose lip alone was hit
   double step_radius_m = 0.3;      ///< cells within this distance are compared for the step
                                    ///< height, m (at least the 4 direct neighbours are used)
 
@@ -34,6 +52,12 @@ struct SurfaceOptions {
 };
 
 struct SurfaceSummary {
+  double noise_m = 0.0;                  ///< height noise behind the tilt standard deviations:
+                                         ///< median RMS distance of the footprint fits, m
+  std::size_t cells_at_data_edge = 0;    ///< elevation cells left unknown by
+                                         ///< unknown_at_data_edge (not fitted)
+  std::size_t cells_finer_scale = 0;     ///< cells whose normal comes from a neighbourhood
+                                         ///< finer than the footprint (adaptive scale)
   std::size_t cells_with_normal = 0;     ///< elevation cells with a plane fit
   std::size_t cells_fallback = 0;        ///< of those, fitted over fallback_radius_m
   std::size_t cells_too_few_points = 0;  ///< elevation cells with < min_points within the
