@@ -50,6 +50,8 @@ bool IkdTree::Options::IsValid(std::string* why) const {
     os << "leaf_size = " << leaf_size << " must be in [1, " << kBucketCapacity << "]";
   } else if (min_checked_size < 2) {
     os << "min_checked_size = " << min_checked_size << " must be >= 2";
+  } else if (voxel_cache_max != 0 && voxel_cache_max < kCacheWays) {
+    os << "voxel_cache_max = " << voxel_cache_max << " must be 0 or >= " << kCacheWays;
   }
   if (why != nullptr) *why = os.str();
   return os.str().empty();
@@ -79,6 +81,7 @@ void IkdTree::Build(const registration::PointCloud& points) {
   BuildSubtree(root_, scratch_points_.begin(), scratch_points_.end());
   scratch_points_.clear();
   scratch_points_.shrink_to_fit();
+  ResetVoxelCache(0.f);  // refilled by the next down-sampling inserts
 }
 
 int IkdTree::NewNode() {
@@ -253,7 +256,8 @@ std::size_t IkdTree::Size() const {
 std::size_t IkdTree::MemoryBytes() const {
   return nodes_.capacity() * sizeof(Node) + buckets_.capacity() * sizeof(Bucket) +
          (free_nodes_.capacity() + free_buckets_.capacity() + path_.capacity()) * sizeof(int) +
-         (scratch_points_.capacity() + voxel_points_.capacity()) * sizeof(Eigen::Vector3f);
+         scratch_points_.capacity() * sizeof(Eigen::Vector3f) +
+         cache_sets_.capacity() * sizeof(CacheSet) + occupancy_.capacity();
 }
 
 int IkdTree::Depth() const {

@@ -50,6 +50,8 @@ bool IkdTree::CheckSubtree(int node, bool labelled, std::string* why) const {
   return true;
 }
 
-bool IkdTree::CheckInvariants(std::string* why) const { return CheckSubtree(root_, false, why); }
+bool IkdTree::CheckInvariants(std::string* why) const {
+  return CheckSubtree(root_, false, why) && CheckVoxelIndex(why);
+}
 
 }  // namespace hylo::mapping

@@ -22,46 +22,59 @@ float BoxSquaredDistance(const float* lo, const float* hi, const Eigen::Vector3f
   return d2;
 }
 
-// Inserts into a list sorted nearest first, holding at most k; the caller has checked that
-// the candidate is no farther than the current k-th.
-void PushSorted(const Eigen::Vector3f& p, float d2, int k, std::vector<Neighbor>* list) {
-  if (static_cast<int>(list->size()) == k) list->pop_back();
-  auto it = list->end();
-  while (it != list->begin() && (it - 1)->squared_distance > d2) --it;
-  list->insert(it, Neighbor{p, d2});
-}
-
 bool ByDistance(const Neighbor& a, const Neighbor& b) {
   return a.squared_distance < b.squared_distance;
 }
 }  // namespace
+
+// The k nearest so far, nearest first, in the caller's array of k slots (no allocation and
+// no vector bookkeeping per candidate: a k = 5 query offers a few dozen candidates).
+struct IkdTree::KnnSearch {
+  Eigen::Vector3f query;
+  int k = 0;
+  int found = 0;            // filled slots of `best`
+  float worst_d2 = 0.f;     // bound: max distance^2, then the k-th squared distance, m^2
+  Neighbor* best = nullptr;
+
+  // Keeps `p` (no farther than worst_d2); ties stay behind the earlier candidates.
+  void Offer(const Eigen::Vector3f& p, float d2) {
+    int i = found < k ? found++ : k - 1;
+    for (; i > 0 && best[i - 1].squared_distance > d2; --i) best[i] = best[i - 1];
+    best[i] = Neighbor{p, d2};
+    if (found == k) worst_d2 = best[k - 1].squared_distance;
+  }
+};
 
 void IkdTree::KNearest(const Eigen::Vector3f& query, int k, float max_distance,
                        std::vector<Neighbor>* neighbors) const {
   neighbors->clear();
   const Node& root = nodes_[root_];
   if (k <= 0 || root.invalid == root.size) return;  // children of a labelled root are stale
-  neighbors->reserve(static_cast<std::size_t>(k));
-  float worst_d2 = max_distance * max_distance;
-  KNearestIn(root_, query, k, &worst_d2, neighbors);
+  neighbors->resize(static_cast<std::size_t>(k));
+  KnnSearch search;
+  search.query = query;
+  search.k = k;
+  search.worst_d2 = max_distance * max_distance;
+  search.best = neighbors->data();
+  KNearestIn(root_, &search);
+  neighbors->resize(static_cast<std::size_t>(search.found));
 }
 
-void IkdTree::KNearestIn(int node, const Eigen::Vector3f& query, int k, float* worst_d2,
-                         std::vector<Neighbor>* neighbors) const {
+void IkdTree::KNearestIn(int node, KnnSearch* search) const {
   const Node& self = nodes_[node];
+  const Eigen::Vector3f query = search->query;  // a local: no aliasing with the results
   if (self.IsLeaf()) {
     const Bucket& bucket = buckets_[self.bucket];
     float d2[kBucketCapacity];
-    for (int i = 0; i < kBucketCapacity; ++i) {  // all slots: unused ones are +inf
+    for (int i = 0; i < kBucketCapacity; ++i) {  // all slots (unused are +inf): vectorises
       const float dx = bucket.x[i] - query.x();
       const float dy = bucket.y[i] - query.y();
       const float dz = bucket.z[i] - query.z();
       d2[i] = dx * dx + dy * dy + dz * dz;
     }
     for (uint32_t i = 0; i < bucket.count; ++i) {
-      if (d2[i] > *worst_d2 || ((bucket.deleted >> i) & 1u)) continue;
-      PushSorted({bucket.x[i], bucket.y[i], bucket.z[i]}, d2[i], k, neighbors);
-      if (static_cast<int>(neighbors->size()) == k) *worst_d2 = neighbors->back().squared_distance;
+      if (d2[i] > search->worst_d2 || ((bucket.deleted >> i) & 1u)) continue;
+      search->Offer({bucket.x[i], bucket.y[i], bucket.z[i]}, d2[i]);
     }
     return;
   }
@@ -76,8 +89,8 @@ void IkdTree::KNearestIn(int node, const Eigen::Vector3f& query, int k, float* w
   const int second = self.child[left_first ? 1 : 0];
   const float d_first = left_first ? d_left : d_right;
   const float d_second = left_first ? d_right : d_left;
-  if (d_first <= *worst_d2) KNearestIn(first, query, k, worst_d2, neighbors);
-  if (d_second <= *worst_d2) KNearestIn(second, query, k, worst_d2, neighbors);
+  if (d_first <= search->worst_d2) KNearestIn(first, search);
+  if (d_second <= search->worst_d2) KNearestIn(second, search);
 }
 
 void IkdTree::Radius(const Eigen::Vector3f& query, float radius,
@@ -133,6 +146,36 @@ void IkdTree::BoxSearchIn(int node, const Box3f& box, registration::PointCloud* 
       if ((p.array() >= box.min.array()).all() && (p.array() <= box.max.array()).all()) {
         points->push_back(p);
       }
+    }
+  }
+}
+
+// BoxSearchIn specialised to one voxel (the on-tree downsampling's question, asked once per
+// inserted point): the same pruning and visiting order, but the voxel's points are counted
+// and compared in place instead of being copied out and filtered afterwards.
+void IkdTree::VoxelSearchIn(int node, VoxelScan* scan) const {
+  const Node& self = nodes_[node];
+  if (self.invalid == self.size) return;
+  const Box3f& box = scan->box;
+  for (int a = 0; a < 3; ++a) {
+    if (self.lo[a] > box.max[a] || self.hi[a] < box.min[a]) return;
+  }
+  if (!self.IsLeaf()) {
+    VoxelSearchIn(self.child[0], scan);
+    VoxelSearchIn(self.child[1], scan);
+    return;
+  }
+  const Bucket& bucket = buckets_[self.bucket];
+  for (uint32_t i = 0; i < bucket.count; ++i) {
+    if ((bucket.deleted >> i) & 1u) continue;
+    const Eigen::Vector3f p(bucket.x[i], bucket.y[i], bucket.z[i]);
+    if ((p.array() < box.min.array()).any() || (p.array() > box.max.array()).any()) continue;
+    if (VoxelOf(p, scan->voxel_size_m) != scan->key) continue;
+    ++scan->count;
+    const float d2 = (p - scan->centre).squaredNorm();
+    if (d2 < scan->best_d2) {
+      scan->best_d2 = d2;
+      scan->best = p;
     }
   }
 }

@@ -26,10 +26,6 @@ bool Contains(const Box3f& box, const float* lo, const float* hi) {
   return true;
 }
 
-Eigen::Matrix<int64_t, 3, 1> VoxelKey(const int64_t* voxel) {
-  return {voxel[0], voxel[1], voxel[2]};
-}
-
 bool Contains(const float* lo, const float* hi, const Eigen::Vector3f& p) {
   return p.x() >= lo[0] && p.x() <= hi[0] && p.y() >= lo[1] && p.y() <= hi[1] && p.z() >= lo[2] &&
          p.z() <= hi[2];
@@ -38,19 +34,14 @@ bool Contains(const float* lo, const float* hi, const Eigen::Vector3f& p) {
 bool Contains(const Box3f& box, const Eigen::Vector3f& p) {
   return (p.array() >= box.min.array()).all() && (p.array() <= box.max.array()).all();
 }
-
-// Box slightly larger than voxel `key`, so that no point whose VoxelOf is `key` falls outside
-// it through rounding; members are then filtered by VoxelOf itself.
-Box3f VoxelSearchBox(const Eigen::Matrix<int64_t, 3, 1>& key, float voxel_size_m) {
-  const Eigen::Vector3f centre = VoxelCentre(key, voxel_size_m);
-  const float margin = 0.01f * voxel_size_m + 4e-7f * centre.cwiseAbs().maxCoeff();
-  const Eigen::Vector3f half = Eigen::Vector3f::Constant(0.5f * voxel_size_m + margin);
-  return {centre - half, centre + half};
-}
 }  // namespace
 
 IkdTree::InsertSummary IkdTree::Insert(const registration::PointCloud& points, float voxel_size_m) {
   InsertSummary summary;
+  if (voxel_size_m > 0.f) {
+    if (voxel_size_m != cache_voxel_m_) ResetVoxelCache(voxel_size_m);
+    GrowVoxelCache();
+  }
   for (const Eigen::Vector3f& p : points) {
     if (!p.allFinite()) {
       ++summary.num_nonfinite;
@@ -61,47 +52,11 @@ IkdTree::InsertSummary IkdTree::Insert(const registration::PointCloud& points, f
       summary.num_skipped += one.num_skipped;
     } else {
       InsertPoint(p);
+      Forget(p);  // its voxel may now hold two points
+      CountPoint(p, +1);
       ++summary.num_inserted;
     }
   }
-  return summary;
-}
-
-// The paper's down-sampling: the voxel of the new point keeps the one point nearest
-// its centre, among the map points already there and the new point.
-IkdTree::InsertSummary IkdTree::InsertDownsampled(const Eigen::Vector3f& point,
-                                                  float voxel_size_m) {
-  InsertSummary summary;
-  const Eigen::Matrix<int64_t, 3, 1> key = VoxelOf(point, voxel_size_m);
-  const Eigen::Vector3f centre = VoxelCentre(key, voxel_size_m);
-  const Box3f search_box = VoxelSearchBox(key, voxel_size_m);
-  voxel_points_.clear();
-  BoxSearchIn(root_, search_box, &voxel_points_);
-  float best_d2 = std::numeric_limits<float>::infinity();
-  Eigen::Vector3f best = point;
-  std::size_t in_voxel = 0;
-  for (const Eigen::Vector3f& q : voxel_points_) {
-    if (VoxelOf(q, voxel_size_m) != key) continue;
-    ++in_voxel;
-    const float d2 = (q - centre).squaredNorm();
-    if (d2 < best_d2) {
-      best_d2 = d2;
-      best = q;
-    }
-  }
-  const bool new_is_nearer = (point - centre).squaredNorm() < best_d2;
-  if (in_voxel == 0) {
-    summary.num_inserted = 1;
-  } else if (new_is_nearer) {
-    summary.num_inserted = 1;
-    summary.num_replaced = in_voxel;
-  } else {
-    summary.num_skipped = 1;
-    if (in_voxel == 1) return summary;  // the usual case once a place is mapped: no change
-  }
-  if (in_voxel == 1 && ReplacePoint(root_, best, point)) return summary;
-  if (in_voxel > 0) DeleteInBox(root_, search_box, key.data(), voxel_size_m);
-  InsertPoint(new_is_nearer ? point : best);
   return summary;
 }
 
@@ -213,7 +168,13 @@ void IkdTree::SplitLeaf(int node, const Eigen::Vector3f& point) {
 std::size_t IkdTree::Delete(const registration::PointCloud& points) {
   std::size_t deleted = 0;
   for (const Eigen::Vector3f& p : points) {
-    if (p.allFinite()) deleted += DeleteInBox(root_, Box3f{p, p}, nullptr, 0.f);
+    if (!p.allFinite()) continue;
+    const std::size_t here = DeleteInBox(root_, Box3f{p, p}, nullptr, 0.f);
+    if (here > 0) {
+      Forget(p);
+      CountPoint(p, -static_cast<int>(here));
+    }
+    deleted += here;
   }
   return deleted;
 }
@@ -221,7 +182,15 @@ std::size_t IkdTree::Delete(const registration::PointCloud& points) {
 std::size_t IkdTree::DeleteBox(const Box3f& box) {
   if (!box.min.allFinite() && !box.max.allFinite()) return 0;
   if ((box.min.array() > box.max.array()).any()) return 0;
-  return DeleteInBox(root_, box, nullptr, 0.f);
+  if (occupancy_.empty()) return DeleteInBox(root_, box, nullptr, 0.f);  // no voxel records
+  registration::PointCloud inside;  // the voxel records must know which points go
+  BoxSearchIn(root_, box, &inside);
+  const std::size_t deleted = DeleteInBox(root_, box, nullptr, 0.f);
+  for (const Eigen::Vector3f& p : inside) {
+    CountPoint(p, -1);
+    Forget(p);
+  }
+  return deleted;
 }
 
 // The paper's box-wise delete: a subtree inside the box only gets a lazy label; a
@@ -238,7 +207,9 @@ std::size_t IkdTree::DeleteInBox(int node, const Box3f& box, const int64_t* voxe
       if ((bucket.deleted >> i) & 1u) continue;
       const Eigen::Vector3f p(bucket.x[i], bucket.y[i], bucket.z[i]);
       if (!Contains(box, p)) continue;
-      if (voxel != nullptr && VoxelOf(p, voxel_size_m) != VoxelKey(voxel)) continue;
+      if (voxel != nullptr && VoxelOf(p, voxel_size_m) != Eigen::Map<const VoxelKey>(voxel)) {
+        continue;
+      }
       bucket.deleted |= 1u << i;
       ++deleted;
     }

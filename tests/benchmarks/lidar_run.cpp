@@ -189,6 +189,13 @@ LidarRunResult RunLidar(const LidarRunConfig& config, Report* report) {
               static_cast<double>(tree.stats().num_points_rebuilt) / config.steps);
   report->Set(s, "ikd_largest_rebuild_points", static_cast<double>(tree.stats().largest_rebuild));
   report->Set(s, "ikd_bytes_per_point_final", result.ikd_bytes_per_point);
+  const mapping::IkdTree::Stats& stats = tree.stats();
+  const double decided = static_cast<double>(
+      stats.num_voxel_cache_hits + stats.num_voxels_proven_empty + stats.num_voxel_searches);
+  report->Set(s, "ikd_voxel_cache_hit_fraction",
+              static_cast<double>(stats.num_voxel_cache_hits) / std::max(decided, 1.0));
+  report->Set(s, "ikd_voxel_proven_empty_fraction",
+              static_cast<double>(stats.num_voxels_proven_empty) / std::max(decided, 1.0));
   report->Set(s, "static_samples_at_max_map", static_n);
   report->Set(s, "static_map_points_at_max_map", map_at_max / static_n);
   report->Set(s, "static_voxel_map_upkeep_ms_mean", mean(upkeep_ms));

@@ -3,9 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <limits>
 #include <map>
 #include <random>
+#include <string>
 
 #include "hylo/mapping/ikd_tree.h"
 #include "hylo/registration/voxel_filter.h"
@@ -86,6 +89,79 @@ TEST(IkdTreeDownsample, DensePriorMapVoxelCollapsesToNearestPoint) {
   EXPECT_EQ(Sorted(tree.Flatten()), Sorted({{0.5f, 0.5f, 0.52f}, {1.5f, 0.5f, 0.5f}}));
 }
 
+// Brute-force down-sampling insert into a plain set: the voxel of `p` keeps the point nearest
+// its centre among its current points and `p`.
+void InsertDownsampledInto(const Eigen::Vector3f& p, float voxel, PointCloud* set) {
+  const auto key = VoxelOf(p, voxel);
+  const Eigen::Vector3f centre = VoxelCentre(key, voxel);
+  Eigen::Vector3f best = p;
+  float best_d2 = std::numeric_limits<float>::infinity();
+  PointCloud rest;
+  for (const Eigen::Vector3f& q : *set) {
+    if (VoxelOf(q, voxel) != key) {
+      rest.push_back(q);
+    } else if ((q - centre).squaredNorm() < best_d2) {
+      best_d2 = (q - centre).squaredNorm();
+      best = q;
+    }
+  }
+  rest.push_back((p - centre).squaredNorm() < best_d2 ? p : best);
+  set->swap(rest);
+}
+
+class IkdTreeVoxelCache : public ::testing::TestWithParam<int> {};
+
+// Plain inserts, point deletes and box deletes between down-sampling inserts change voxels
+// behind the tree's voxel cache: the cache must follow, and the map must match brute force,
+// with no cache, a 4-voxel cache (evicting all the time) and the default one.
+TEST_P(IkdTreeVoxelCache, FollowsEveryKindOfUpdate) {
+  std::mt19937 rng(41);
+  const float voxel = 0.5f;
+  IkdTree::Options options;
+  options.voxel_cache_max = GetParam();
+  IkdTree tree(options);
+  PointCloud truth = UniformCloud(3000, 3.f, &rng);  // several points per voxel
+  tree.Build(truth);
+  for (int round = 0; round < 8; ++round) {
+    const PointCloud scan = UniformCloud(400, 3.f, &rng);
+    tree.Insert(scan, voxel);
+    for (const auto& p : scan) InsertDownsampledInto(p, voxel, &truth);
+    std::string why;
+    ASSERT_TRUE(tree.CheckInvariants(&why)) << "round " << round << ": " << why;
+    ASSERT_EQ(Sorted(tree.Flatten()), Sorted(truth)) << "round " << round;
+    // Plain inserts (duplicates included), deletes of single points, a box cutting voxels.
+    const PointCloud plain = UniformCloud(200, 3.f, &rng);
+    tree.Insert(plain, 0.f);
+    tree.Insert({plain.front()}, 0.f);
+    truth.insert(truth.end(), plain.begin(), plain.end());
+    truth.push_back(plain.front());
+    PointCloud removed(truth.begin(), truth.begin() + 150);
+    removed.push_back(plain.front());
+    tree.Delete(removed);
+    PointCloud kept;
+    for (const auto& q : truth) {
+      if (std::find(removed.begin(), removed.end(), q) == removed.end()) kept.push_back(q);
+    }
+    truth.swap(kept);
+    const float c = -2.f + 0.5f * static_cast<float>(round);
+    const Box3f box{Eigen::Vector3f(c - 0.37f, -3.f, -1.13f),
+                    Eigen::Vector3f(c + 0.71f, 3.f, 0.9f)};
+    EXPECT_EQ(tree.DeleteBox(box), EraseInBox(box, &truth));
+    ASSERT_TRUE(tree.CheckInvariants(&why)) << "round " << round << ": " << why;
+    ASSERT_EQ(Sorted(tree.Flatten()), Sorted(truth)) << "round " << round;
+  }
+  // Every way of deciding must have run (cache, occupancy counts, tree searches).
+  EXPECT_GT(tree.stats().num_voxel_searches, 0u);
+  EXPECT_GT(tree.stats().num_voxels_proven_empty, 0u);
+  if (GetParam() > 0) {
+    EXPECT_GT(tree.stats().num_voxel_cache_hits, 0u);
+  } else {
+    EXPECT_EQ(tree.stats().num_voxel_cache_hits, 0u);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(CacheSizes, IkdTreeVoxelCache, ::testing::Values(0, 4, 1 << 16));
+
 class IkdTreeDownsampleMix : public ::testing::TestWithParam<float> {};
 
 // Scans drifting through space, inserted with downsampling, with a box deleted behind them:
@@ -108,6 +184,8 @@ TEST_P(IkdTreeDownsampleMix, AgreesWithVoxelModel) {
                     Eigen::Vector3f(behind, 7.f * scale, 7.f * scale)};
     EXPECT_EQ(tree.DeleteBox(box), model.EraseInBox(box));
     if (step % 10 == 9) {
+      std::string why;
+      ASSERT_TRUE(tree.CheckInvariants(&why)) << "step " << step << ": " << why;
       const PointCloud points = model.Points();
       ASSERT_EQ(Sorted(tree.Flatten()), Sorted(points)) << "step " << step;
       PointCloud queries = UniformCloud(80, 7.f * scale, &rng);

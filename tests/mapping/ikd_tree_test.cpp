@@ -29,6 +29,11 @@ TEST(IkdTreeOptions, IsValidNamesTheBrokenField) {
   options.leaf_size = IkdTree::kBucketCapacity + 1;
   EXPECT_FALSE(options.IsValid(&why));
   EXPECT_NE(why.find("leaf_size"), std::string::npos) << why;
+  options = IkdTree::Options();
+  options.voxel_cache_max = 3;  // less than one set
+  EXPECT_FALSE(options.IsValid(&why));
+  EXPECT_NE(why.find("voxel_cache_max"), std::string::npos) << why;
+  options.leaf_size = IkdTree::kBucketCapacity + 1;
   EXPECT_THROW(IkdTree{options}, InternalError);
 }
 

@@ -13,6 +13,11 @@
 // - A downsampling insert whose voxel holds exactly one map point moves that point's slot to
 //   the new point (widening the boxes above it) instead of delete + insert: same map, no
 //   deleted slot left behind, so no deletion-triggered rebuild is owed.
+// - The down-sampling insert first asks a small voxel cache (recently used voxels known to hold
+//   exactly one valid point, and that point) and per-voxel-hash occupancy counts (a zero proves
+//   a voxel empty), and searches the tree only when neither answers; every update keeps both
+//   exact, in bounded memory (<= 10 B/point for the cache, capped by
+//   Options::voxel_cache_max; 2-4 B/point for the counts), see ikd_tree_voxel_index.cpp.
 // - Rebuilds are synchronous (on the calling thread). The paper moves large rebuilds to a
 //   second thread to bound the worst-case latency of one update; that needs an operation log
 //   replayed under a lock. Here a rebuild costs at most the size of the violating subtree
@@ -57,6 +62,10 @@ class IkdTree final : public registration::NeighborSearch {
     int leaf_size = 24;          ///< most points per leaf after a (re)build, 1..kBucketCapacity
     int min_checked_size = 64;   ///< subtrees with fewer stored points are never rebuilt by
                                  ///< the criteria (searching them is already cheap), >= 2
+    int voxel_cache_max = 1 << 16;  ///< most voxels the down-sampling insert's cache holds
+                                    ///< (16 B each; it grows to about one per 2 map points
+                                    ///< up to this), >= 4, or 0: no cache (every
+                                    ///< down-sampling insert searches the tree)
     bool IsValid(std::string* why) const;
   };
 
@@ -74,6 +83,10 @@ class IkdTree final : public registration::NeighborSearch {
     std::size_t num_rebuilds = 0;        ///< partial rebuilds run by the criteria
     std::size_t num_points_rebuilt = 0;  ///< valid points re-sorted by those rebuilds
     std::size_t largest_rebuild = 0;     ///< points of the largest single rebuild
+    std::size_t num_voxel_cache_hits = 0;  ///< down-sampling inserts decided by the voxel cache
+    std::size_t num_voxels_proven_empty = 0;  ///< down-sampling inserts into a voxel the
+                                              ///< occupancy counts proved empty (no search)
+    std::size_t num_voxel_searches = 0;    ///< down-sampling inserts decided by a tree search
   };
 
   IkdTree();
@@ -145,6 +158,17 @@ class IkdTree final : public registration::NeighborSearch {
     uint8_t tree_deleted;  // lazy label: the whole subtree is deleted, children not told
     bool IsLeaf() const { return bucket >= 0; }
   };
+  // One downsampling insert's question about a voxel: its valid map points (found inside
+  // `box`, filtered by VoxelOf == key), how many, and the one nearest the centre.
+  struct VoxelScan {
+    Box3f box;                          // search box, slightly larger than the voxel
+    Eigen::Matrix<int64_t, 3, 1> key;   // the voxel
+    Eigen::Vector3f centre;             // its centre, m
+    float voxel_size_m = 0.f;
+    std::size_t count = 0;              // valid map points in the voxel
+    float best_d2 = 0.f;                // squared distance of `best` to the centre, m^2
+    Eigen::Vector3f best;               // first point (tree order) nearest the centre
+  };
 
   // ikd_tree_build.cpp
   int NewNode();
@@ -158,18 +182,49 @@ class IkdTree final : public registration::NeighborSearch {
   void PushDown(int node);
   void CollectValid(int node, registration::PointCloud* points) const;
   bool CheckSubtree(int node, bool labelled, std::string* why) const;  // ikd_tree_check.cpp
+  // The down-sampling insert's voxel cache: sets of kCacheWays voxels, each known to hold
+  // exactly one valid map point, stored here (the voxel is recomputed from it, VoxelOf); the
+  // most recently used first. Kept exact by every update; see ikd_tree_voxel_index.cpp.
+  using VoxelKey = Eigen::Matrix<int64_t, 3, 1>;
+  static constexpr int kCacheWays = 4;
+  struct alignas(64) CacheSet {  // one cache line
+    float x[kCacheWays];
+    float y[kCacheWays];
+    float z[kCacheWays];
+    uint32_t tag[kCacheWays];  // hash bits of the way's voxel, odd; 0: unused (and all after)
+  };
+  struct CacheSlot {  // where a voxel lives in the cache
+    std::size_t set;
+    uint32_t tag;
+  };
+  // One k-nearest search in progress (ikd_tree_search.cpp).
+  struct KnnSearch;
   // ikd_tree_update.cpp
   void InsertPoint(const Eigen::Vector3f& point);
   void SplitLeaf(int node, const Eigen::Vector3f& point);
   std::size_t DeleteInBox(int node, const Box3f& box, const int64_t* voxel, float voxel_size_m);
-  InsertSummary InsertDownsampled(const Eigen::Vector3f& point, float voxel_size_m);
   bool ReplacePoint(int node, const Eigen::Vector3f& old_point, const Eigen::Vector3f& new_point);
+  // ikd_tree_voxel_index.cpp
+  InsertSummary InsertDownsampled(const Eigen::Vector3f& point, float voxel_size_m);
+  InsertSummary InsertBySearch(const Eigen::Vector3f& point, float voxel_size_m,
+                               Eigen::Vector3f* kept);
+  void ResetVoxelCache(float voxel_size_m);
+  void GrowVoxelCache();
+  CacheSlot CacheSlotOf(const VoxelKey& key) const;
+  int FindWay(CacheSlot slot, const VoxelKey& key) const;  // -1: not cached
+  void Remember(CacheSlot slot, const VoxelKey& key, const Eigen::Vector3f& point);
+  void Forget(const Eigen::Vector3f& point);  // the voxel of `point` changed
+  void RecountOccupancy();
+  std::size_t OccupancyIndex(const VoxelKey& key) const;
+  void CountInVoxel(const VoxelKey& key, int delta);  // `delta` valid points added/removed
+  void CountPoint(const Eigen::Vector3f& point, int delta);
+  bool CheckVoxelIndex(std::string* why) const;
   // ikd_tree_search.cpp
-  void KNearestIn(int node, const Eigen::Vector3f& query, int k, float* worst_d2,
-                  std::vector<registration::Neighbor>* neighbors) const;
+  void KNearestIn(int node, KnnSearch* search) const;
   void RadiusIn(int node, const Eigen::Vector3f& query, float radius_d2,
                 std::vector<registration::Neighbor>* neighbors) const;
   void BoxSearchIn(int node, const Box3f& box, registration::PointCloud* points) const;
+  void VoxelSearchIn(int node, VoxelScan* scan) const;
   // ikd_tree_rebuild.cpp
   bool BreaksCriteria(const Node& node) const;
   void RebalancePath(const std::vector<int>& path);
@@ -184,7 +239,11 @@ class IkdTree final : public registration::NeighborSearch {
   int root_ = -1;
   std::vector<int> path_;                    // scratch: root-to-leaf path of an insert
   registration::PointCloud scratch_points_;  // scratch: points of a rebuild
-  registration::PointCloud voxel_points_;    // scratch: map points of one voxel
+  std::vector<CacheSet> cache_sets_;  // any count (multiply-shift indexing); empty: no cache
+  float cache_voxel_m_ = 0.f;          // voxel edge the cache is kept for, m; 0: none
+  // Valid points per hash bucket of voxels (saturating at 255, then never decreased): a zero
+  // proves a voxel empty without a tree search. Power-of-2 size, >= 2 per valid point.
+  std::vector<uint8_t> occupancy_;
 };
 
 }  // namespace hylo::mapping
