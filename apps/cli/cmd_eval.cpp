@@ -124,9 +124,33 @@ void RunC2c(const C2cArgs& args) {
   MaybeWriteJson(args.json, json);
 }
 
-void PrintErrorTable(double rmse, double mean, double median, double max, const char* unit,
-                     const char* what) {
+void PrintErrorRow(double rmse, double mean, double median, double max, const char* unit,
+                   const char* what) {
   std::printf("  %-12s %-10.4f %-10.4f %-10.4f %-10.4f %s\n", what, rmse, mean, median, max, unit);
+}
+
+// ATE and RPE results carry the same translation (m) and rotation (deg) statistics under the
+// same names; one table and one set of JSON keys for both.
+template <typename ErrorResult>
+void PrintErrorTable(const ErrorResult& r) {
+  std::printf("  %-12s %-10s %-10s %-10s %-10s\n", "", "rmse", "mean", "median", "max");
+  PrintErrorRow(r.rmse_m, r.mean_m, r.median_m, r.max_m, "m", "translation");
+  PrintErrorRow(r.rotation_rmse_deg, r.rotation_mean_deg, r.rotation_median_deg,
+                r.rotation_max_deg, "deg", "rotation");
+}
+
+template <typename ErrorResult>
+void AddErrorFields(const ErrorResult& r, io::Json* json) {
+  io::Json& j = *json;
+  j["rmse_m"] = r.rmse_m;
+  j["mean_m"] = r.mean_m;
+  j["median_m"] = r.median_m;
+  j["std_m"] = r.std_m;
+  j["max_m"] = r.max_m;
+  j["rotation_rmse_deg"] = r.rotation_rmse_deg;
+  j["rotation_mean_deg"] = r.rotation_mean_deg;
+  j["rotation_median_deg"] = r.rotation_median_deg;
+  j["rotation_max_deg"] = r.rotation_max_deg;
 }
 
 void RunAte(const AteArgs& args) {
@@ -140,10 +164,7 @@ void RunAte(const AteArgs& args) {
   std::printf("ATE %s vs %s: %zu poses (%zu unmatched), alignment %s, scale %.6f, path %.2f m\n",
               args.est.c_str(), args.gt.c_str(), ate.num_poses, ate.num_unmatched,
               args.align.c_str(), ate.scale, ate.path_length_m);
-  std::printf("  %-12s %-10s %-10s %-10s %-10s\n", "", "rmse", "mean", "median", "max");
-  PrintErrorTable(ate.rmse_m, ate.mean_m, ate.median_m, ate.max_m, "m", "translation");
-  PrintErrorTable(ate.rotation_rmse_deg, ate.rotation_mean_deg, ate.rotation_median_deg,
-                  ate.rotation_max_deg, "deg", "rotation");
+  PrintErrorTable(ate);
   io::Json json;
   json["metric"] = "ate";
   AddInputs(&json, args);
@@ -151,15 +172,7 @@ void RunAte(const AteArgs& args) {
   json["num_poses"] = ate.num_poses;
   json["num_unmatched"] = ate.num_unmatched;
   json["scale"] = ate.scale;
-  json["rmse_m"] = ate.rmse_m;
-  json["mean_m"] = ate.mean_m;
-  json["median_m"] = ate.median_m;
-  json["std_m"] = ate.std_m;
-  json["max_m"] = ate.max_m;
-  json["rotation_rmse_deg"] = ate.rotation_rmse_deg;
-  json["rotation_mean_deg"] = ate.rotation_mean_deg;
-  json["rotation_median_deg"] = ate.rotation_median_deg;
-  json["rotation_max_deg"] = ate.rotation_max_deg;
+  AddErrorFields(ate, &json);
   json["path_length_m"] = ate.path_length_m;
   json["end_drift_m"] = ate.end_drift_m;
   // Row-major, as a 4×4 is read and typed (Eigen stores column-major).
@@ -180,10 +193,7 @@ void RunRpe(const RpeArgs& args) {
   if (!rpe.ok) throw std::runtime_error("rpe " + args.est + " vs " + args.gt + ": " + rpe.message);
   std::printf("RPE %s vs %s: delta %g %s, %zu pairs over %zu poses\n", args.est.c_str(),
               args.gt.c_str(), args.delta, args.delta_unit.c_str(), rpe.num_pairs, rpe.num_poses);
-  std::printf("  %-12s %-10s %-10s %-10s %-10s\n", "", "rmse", "mean", "median", "max");
-  PrintErrorTable(rpe.rmse_m, rpe.mean_m, rpe.median_m, rpe.max_m, "m", "translation");
-  PrintErrorTable(rpe.rotation_rmse_deg, rpe.rotation_mean_deg, rpe.rotation_median_deg,
-                  rpe.rotation_max_deg, "deg", "rotation");
+  PrintErrorTable(rpe);
   io::Json json;
   json["metric"] = "rpe";
   AddInputs(&json, args);
@@ -191,15 +201,7 @@ void RunRpe(const RpeArgs& args) {
   json["delta_unit"] = args.delta_unit;
   json["num_poses"] = rpe.num_poses;
   json["num_pairs"] = rpe.num_pairs;
-  json["rmse_m"] = rpe.rmse_m;
-  json["mean_m"] = rpe.mean_m;
-  json["median_m"] = rpe.median_m;
-  json["std_m"] = rpe.std_m;
-  json["max_m"] = rpe.max_m;
-  json["rotation_rmse_deg"] = rpe.rotation_rmse_deg;
-  json["rotation_mean_deg"] = rpe.rotation_mean_deg;
-  json["rotation_median_deg"] = rpe.rotation_median_deg;
-  json["rotation_max_deg"] = rpe.rotation_max_deg;
+  AddErrorFields(rpe, &json);
   MaybeWriteJson(args.json, json);
 }
 
