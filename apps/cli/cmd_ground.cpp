@@ -1,9 +1,11 @@
 // `hylo ground --in CLOUD --out-ground G --out-objects O`: cloth simulation ground filter
 // (Zhang et al. 2016) and a JSON summary.
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "commands.h"
 #include "hylo/io/cloud_io.h"
@@ -18,7 +20,17 @@ struct GroundArgs {
   mapping::ClothFilterOptions options;
   bool no_slope_smoothing = false;
   bool vertical_distance = false;
+  std::string hole_fill = "mean";  ///< --hole-fill, see HoleFillByName
 };
+
+// CLI names of mapping::ClothHoleFill.
+const std::map<std::string, mapping::ClothHoleFill>& HoleFillByName() {
+  static const std::map<std::string, mapping::ClothHoleFill> names = {
+      {"mean", mapping::ClothHoleFill::kNeighbourMean},
+      {"nearest", mapping::ClothHoleFill::kNearest},
+      {"reference", mapping::ClothHoleFill::kReferenceScanline}};
+  return names;
+}
 
 io::Json SummaryJson(const GroundArgs& args, const mapping::ClothFilterResult& r, double seconds) {
   const mapping::ClothFilterOptions& o = args.options;
@@ -38,7 +50,7 @@ io::Json SummaryJson(const GroundArgs& args, const mapping::ClothFilterResult& r
   opt["slope_max_cloth_gap_m"] = o.slope_max_cloth_gap_m;  // null when infinite (no test)
   opt["slope_min_region_particles"] = o.slope_min_region_particles;
   opt["convergence_threshold_m"] = o.convergence_threshold_m;
-  opt["reference_hole_fill"] = o.reference_hole_fill;
+  opt["hole_fill"] = args.hole_fill;
   opt["low_outlier_depth_m"] = o.low_outlier_depth_m;
   opt["low_outlier_cell_m"] = o.low_outlier_cell_m;
   opt["low_outlier_min_support"] = o.low_outlier_min_support;
@@ -80,6 +92,7 @@ io::CloudFile Select(const io::CloudFile& cloud, const mapping::ClothFilterResul
 void RunGround(GroundArgs& args) {
   args.options.slope_smoothing = !args.no_slope_smoothing;
   args.options.class_distance_along_normal = !args.vertical_distance;
+  args.options.hole_fill = HoleFillByName().at(args.hole_fill);  // CLI checked the name
   std::string why;
   if (!args.options.IsValid(&why)) throw std::invalid_argument(why);
   std::fprintf(stderr, "reading %s\n", args.in_path.c_str());
@@ -140,8 +153,15 @@ void AddGroundCommand(CLI::App& root) {
                   "a point is also a low outlier when fewer than this fraction of the points "
                   "around it reach its level (0 = by count only)")
       ->capture_default_str();
-  cmd->add_flag("--reference-hole-fill", o.reference_hole_fill,
-                "fill empty particles along rows/columns as the original CSF code does");
+  std::vector<std::string> fill_names;
+  for (const auto& [name, fill] : HoleFillByName()) fill_names.push_back(name);
+  cmd->add_option("--hole-fill", args.hole_fill,
+                  "height under particles without a point: mean (of known neighbours), nearest "
+                  "(nearest measured particle, the paper's nearest point; suits a cloth finer "
+                  "than the point spacing), reference (along rows/columns as the original CSF "
+                  "code)")
+      ->check(CLI::IsMember(fill_names))
+      ->capture_default_str();
   cmd->add_option("--gravity", o.gravity,
                   "cloth gravity per step^2 (the original code's build used 0.2 dT^2)")
       ->capture_default_str();

@@ -168,10 +168,8 @@ ClothFilterResult FilterGroundLocal(const registration::PointCloud& points_local
       cloth::ClothGrid::Covering(min_p.head<2>().cast<double>(), max_p.head<2>().cast<double>(),
                                  options.cloth_resolution_m, kBufferCells);
   const registration::PointCloud landing = WithoutLowOutliers(inverted, options, &result);
-  const cloth::InvertedSurface surface = cloth::RasterizeInvertedSurface(
-      grid, landing,
-      options.reference_hole_fill ? cloth::HoleFill::kReferenceScanline
-                                  : cloth::HoleFill::kNeighbourMean);
+  const cloth::InvertedSurface surface =
+      cloth::RasterizeInvertedSurface(grid, landing, options.hole_fill);
   float top_z = landing.front().z();
   for (const Eigen::Vector3f& p : landing) top_z = std::max(top_z, p.z());
   cloth::Cloth cloth(grid, top_z + kStartClearanceM, DynamicsFrom(options));

