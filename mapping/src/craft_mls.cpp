@@ -79,9 +79,13 @@ Eigen::Vector3d FitCoordinates(const pcl::MLSResult& mls, const Eigen::Vector3d&
   return {delta.dot(mls.u_axis), delta.dot(mls.v_axis), delta.dot(mls.plane_normal)};
 }
 
+// Order <= 3: at most 10 coefficients, kept on the stack (this runs per neighbour).
+using Terms = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 10, 1>;
+using TermMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 10, 10>;
+
 // The polynomial's terms u^i v^j at (u, v), in the order MLSResult::computeMLSSurface uses.
-Eigen::VectorXd PolynomialTerms(int order, double u, double v) {
-  Eigen::VectorXd terms(NumCoefficients(order));
+Terms PolynomialTerms(int order, double u, double v) {
+  Terms terms(NumCoefficients(order));
   int j = 0;
   double u_pow = 1.0;
   for (int ui = 0; ui <= order; ++ui) {
@@ -114,14 +118,14 @@ ScaleFit FitScale(const Cloud& cloud, int query, const pcl::Indices& neighbours,
   // point sits at height c_0; on the plane alone it is the centroid's, sigma^2 / n.
   double sum_sq = 0.0;
   const int p = polynomial ? nr_coeff : 1;
-  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(p, p), b = Eigen::MatrixXd::Zero(p, p);
+  TermMatrix a = TermMatrix::Zero(p, p), b = TermMatrix::Zero(p, p);
   for (const pcl::index_t k : neighbours) {
     const Eigen::Vector3d uvw = FitCoordinates(mls, cloud[k].getVector3fMap().cast<double>());
     if (!polynomial) {
       sum_sq += uvw.z() * uvw.z();
       continue;
     }
-    const Eigen::VectorXd terms = PolynomialTerms(order, uvw.x(), uvw.y());
+    const Terms terms = PolynomialTerms(order, uvw.x(), uvw.y());
     const double r = uvw.z() - terms.dot(mls.c_vec);
     sum_sq += r * r;
     // MLSResult's default weight (private there): exp(-d^2 / radius^2), d from the mean.
@@ -130,7 +134,7 @@ ScaleFit FitScale(const Cloud& cloud, int query, const pcl::Indices& neighbours,
     b.noalias() += w * w * terms * terms.transpose();
   }
   if (polynomial) {
-    const Eigen::MatrixXd a_inv = a.inverse();
+    const TermMatrix a_inv = a.inverse();
     f.variance_factor = (a_inv * b * a_inv)(0, 0);
   } else {
     f.variance_factor = 1.0 / f.num_neighbours;
