@@ -77,6 +77,9 @@ Json FiguresJson(const SiteEvalOptions& o, const SiteFigures& f) {
   c["voxel_size_m"] = o.craft.voxel_size_m;
   c["mls_search_radius_m"] = o.craft.mls_search_radius_m;
   c["polynomial_order"] = o.craft.polynomial_order;
+  c["mls_support_voxel_m"] = o.craft.mls_support_voxel_m;
+  c["mls_small_radius_m"] = o.craft.mls_small_radius_m;
+  c["scale_consistency_sigmas"] = o.craft.scale_consistency_sigmas;
   c["raw"] = ThicknessJson(f.craft.raw);
   c["sampled"] = ThicknessJson(f.craft.sampled);
   c["crafted"] = ThicknessJson(f.craft.crafted);
