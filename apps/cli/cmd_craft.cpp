@@ -24,6 +24,9 @@ io::Json SummaryJson(const CraftArgs& args, const mapping::CraftResult& r) {
   io::Json& o = j["options"];
   o["voxel_size_m"] = args.options.voxel_size_m;
   o["mls_search_radius_m"] = args.options.mls_search_radius_m;
+  o["mls_support_voxel_m"] = args.options.mls_support_voxel_m;
+  o["mls_small_radius_m"] = args.options.mls_small_radius_m;
+  o["scale_consistency_sigmas"] = args.options.scale_consistency_sigmas;
   o["polynomial_order"] = args.options.polynomial_order;
   o["num_threads"] = args.options.num_threads;
   o["compute_normals"] = args.options.compute_normals;
@@ -32,6 +35,8 @@ io::Json SummaryJson(const CraftArgs& args, const mapping::CraftResult& r) {
   p["non_finite"] = r.num_invalid;
   p["after_sampling"] = r.num_sampled;
   p["dropped_by_mls"] = r.num_dropped_by_mls;
+  p["mls_support"] = r.num_support;
+  p["small_scale"] = r.num_small_scale;
   p["output"] = r.points_world.size();
   j["seconds"]["sampling"] = r.sampling_seconds;
   j["seconds"]["mls"] = r.mls_seconds;
@@ -47,17 +52,20 @@ void RunCraft(CraftArgs& args) {
   std::fprintf(stderr, "reading %s\n", args.in_path.c_str());
   io::CloudFile raw = io::ReadCloud(args.in_path);
   std::fprintf(stderr,
-               "crafting %zu points: %.3f m sampling, MLS radius %.3f m, order %d, "
-               "%d thread(s)\n",
+               "crafting %zu points: %.3f m sampling, MLS radius %.3f m (small %.3f m, support "
+               "voxel %.4f m), order %d, %d thread(s)\n",
                raw.positions.size(), args.options.voxel_size_m, args.options.mls_search_radius_m,
+               args.options.mls_small_radius_m, args.options.mls_support_voxel_m,
                args.options.polynomial_order, args.options.num_threads);
   mapping::CraftResult result = mapping::CraftMap(raw.positions, args.options);
   result.num_invalid += raw.dropped_non_finite;
   result.num_input += raw.dropped_non_finite;
   if (!result.ok) throw std::runtime_error(args.in_path + ": " + result.message);
-  std::fprintf(stderr, "  sampling %.2f s -> %zu points; MLS %.2f s -> %zu points (%zu dropped)\n",
-               result.sampling_seconds, result.num_sampled, result.mls_seconds,
-               result.points_world.size(), result.num_dropped_by_mls);
+  std::fprintf(stderr,
+               "  sampling %.2f s -> %zu points; MLS %.2f s on %zu points -> %zu points (%zu "
+               "dropped, %zu at the small radius)\n",
+               result.sampling_seconds, result.num_sampled, result.mls_seconds, result.num_support,
+               result.points_world.size(), result.num_dropped_by_mls, result.num_small_scale);
   io::CloudFile clean;
   clean.positions = std::move(result.points_world);
   clean.normals = result.normals;
@@ -78,6 +86,16 @@ void AddCraftCommand(CLI::App& root) {
   cmd->add_option("--voxel", args.options.voxel_size_m, "uniform sampling voxel edge, m (0 = off)")
       ->capture_default_str();
   cmd->add_option("--radius", args.options.mls_search_radius_m, "MLS search radius, m")
+      ->capture_default_str();
+  cmd->add_option("--small-radius", args.options.mls_small_radius_m,
+                  "smaller MLS radius where the large fit disagrees with it, m (0 = single scale)")
+      ->capture_default_str();
+  cmd->add_option("--support-voxel", args.options.mls_support_voxel_m,
+                  "MLS fits use the input thinned to this voxel, m (0 = all input points; >= "
+                  "--voxel = the sampled points only)")
+      ->capture_default_str();
+  cmd->add_option("--scale-sigmas", args.options.scale_consistency_sigmas,
+                  "scale test: confidence interval half-width, standard deviations")
       ->capture_default_str();
   cmd->add_option("--order", args.options.polynomial_order, "MLS polynomial order, 0..3")
       ->capture_default_str();

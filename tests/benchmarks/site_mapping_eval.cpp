@@ -6,6 +6,8 @@
 //                          [--lidar vlp16|rs16] [--resolution M] [--out DIR] [--json PATH]
 //                          [--cells]   (per-cell CSV tables of the slope error in --out)
 //                          [--only-craft | --only-slope] [--mls-radius M] [--order N]
+//                          [--small-radius M] [--support-voxel M]  (CraftOptions: small radius
+//                          0 = single scale; support voxel >= sampling voxel = sampled points only)
 // Full: the simulator's default session A (180 s, 0.2 deg columns), every scan. --quick: the
 // simulator's coarse settings (SimulationOptions::Fast: 1 deg columns, 0.4 m terrain) for 20 s.
 
@@ -75,12 +77,17 @@ Json FiguresJson(const SiteEvalOptions& o, const SiteFigures& f) {
   c["voxel_size_m"] = o.craft.voxel_size_m;
   c["mls_search_radius_m"] = o.craft.mls_search_radius_m;
   c["polynomial_order"] = o.craft.polynomial_order;
+  c["mls_support_voxel_m"] = o.craft.mls_support_voxel_m;
+  c["mls_small_radius_m"] = o.craft.mls_small_radius_m;
+  c["scale_consistency_sigmas"] = o.craft.scale_consistency_sigmas;
   c["raw"] = ThicknessJson(f.craft.raw);
   c["sampled"] = ThicknessJson(f.craft.sampled);
   c["crafted"] = ThicknessJson(f.craft.crafted);
   c["sampled_points"] = f.craft.sampled_points;
   c["crafted_points"] = f.craft.crafted_points;
   c["dropped_by_mls"] = f.craft.sampled_points - f.craft.crafted_points;
+  c["mls_support_points"] = f.craft.support_points;
+  c["small_scale_points"] = f.craft.small_scale_points;
 
   c["thickness_ratio"] = f.craft.ThicknessRatio();
   c["thickness_ratio_sampled_over_crafted"] = f.craft.sampled.rms_m / f.craft.crafted.rms_m;
@@ -143,6 +150,9 @@ void PrintFigures(const SiteEvalOptions& o, const SiteFigures& f) {
   std::printf("  MLS input %zu points: %zu dropped (too few neighbours: absent from the map "
               "and from the figures)\n",
               f.craft.sampled_points, f.craft.sampled_points - f.craft.crafted_points);
+  std::printf("  MLS fits on %zu points (support voxel %.4f m); %zu crafted points took the "
+              "small radius %.3f m\n", f.craft.support_points, o.craft.mls_support_voxel_m,
+              f.craft.small_scale_points, o.craft.mls_small_radius_m);
   std::printf("  time on %zu points: 1 thread %.2f s, 2 threads %.2f s (shared machine)\n",
               f.craft.timing_points, f.craft.seconds_1_thread, f.craft.seconds_2_threads);
   const GroundFigures& g = f.ground;
@@ -167,7 +177,8 @@ void PrintFigures(const SiteEvalOptions& o, const SiteFigures& f) {
 
 bool ParseArgs(int argc, char** argv, SiteEvalOptions* o, std::string* json_path) {
   bool quick = false;
-  double duration_s = -1, resolution_m = -1, mls_radius_m = -1;
+  double duration_s = -1, resolution_m = -1, mls_radius_m = -1, small_radius_m = -1;
+  double support_voxel_m = -1;
   int stride = 0, order = -1;
   std::string only;
   std::string lidar;
@@ -187,6 +198,8 @@ bool ParseArgs(int argc, char** argv, SiteEvalOptions* o, std::string* json_path
     else if (a == "--only-slope") only = "slope";
     else if (a == "--mls-radius" && has_value) mls_radius_m = std::atof(argv[++i]);
     else if (a == "--order" && has_value) order = std::atoi(argv[++i]);
+    else if (a == "--small-radius" && has_value) small_radius_m = std::atof(argv[++i]);
+    else if (a == "--support-voxel" && has_value) support_voxel_m = std::atof(argv[++i]);
     else {
       std::fprintf(stderr, "unknown argument '%s'\n", a.c_str());
       return false;
@@ -202,6 +215,8 @@ bool ParseArgs(int argc, char** argv, SiteEvalOptions* o, std::string* json_path
   if (resolution_m > 0) o->traversability.resolution_m = resolution_m;
   if (mls_radius_m > 0) o->craft.mls_search_radius_m = mls_radius_m;
   if (order >= 0) o->craft.polynomial_order = order;
+  if (small_radius_m >= 0) o->craft.mls_small_radius_m = small_radius_m;
+  if (support_voxel_m >= 0) o->craft.mls_support_voxel_m = support_voxel_m;
   o->measure_craft = only != "slope";
   o->measure_ground_and_slope = only != "craft";
   if (!lidar.empty() && !hylo::sim::ParseLidarModel(lidar, &o->sim.lidar.model)) {

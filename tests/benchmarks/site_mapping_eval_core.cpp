@@ -124,6 +124,8 @@ CraftFigures MeasureCrafting(const SiteEvalOptions& options, const AccumulatedMa
   f.seconds = SecondsSince(start);
   f.crafted_points = crafted.points_world.size();
   f.sampled_points = crafted.num_sampled;
+  f.support_points = crafted.num_support;
+  f.small_scale_points = crafted.num_small_scale;
   f.crafted = MeasureThickness(field, primitives, crafted.points_world, options.thickness_samples);
   if (options.timing_points > 0) {
     const std::vector<Eigen::Vector3d> timing = TimingMap(map, options.timing_points);

@@ -69,6 +69,8 @@ struct CraftFigures {
   Thickness raw, sampled, crafted;  ///< input map, after uniform sampling only, after MLS
   std::size_t crafted_points = 0;
   std::size_t sampled_points = 0;      ///< after uniform sampling (MLS input)
+  std::size_t support_points = 0;      ///< points the MLS fits used (support + sampled)
+  std::size_t small_scale_points = 0;  ///< crafted points that took the small MLS radius
   double seconds = 0.0;                ///< wall time of CraftMap on the whole map, s
   std::size_t timing_points = 0;       ///< size of the timed map
   double seconds_1_thread = 0.0;       ///< wall time (sampling + MLS), s

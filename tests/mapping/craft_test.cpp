@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace hylo::mapping {
@@ -81,6 +82,18 @@ TEST(CraftOptions, DefaultsValidAndBadFieldsNamed) {
   EXPECT_FALSE(options.IsValid(&why));
   EXPECT_NE(why.find("polynomial_order"), std::string::npos) << why;
   options = CraftOptions{};
+  options.mls_small_radius_m = options.mls_search_radius_m;
+  EXPECT_FALSE(options.IsValid(&why));
+  EXPECT_NE(why.find("mls_small_radius_m"), std::string::npos) << why;
+  options = CraftOptions{};
+  options.mls_support_voxel_m = -0.01;
+  EXPECT_FALSE(options.IsValid(&why));
+  EXPECT_NE(why.find("mls_support_voxel_m"), std::string::npos) << why;
+  options = CraftOptions{};
+  options.scale_consistency_sigmas = 0.0;
+  EXPECT_FALSE(options.IsValid(&why));
+  EXPECT_NE(why.find("scale_consistency_sigmas"), std::string::npos) << why;
+  options = CraftOptions{};
   options.num_threads = 0;
   EXPECT_THROW(CraftMap({{0, 0, 0}}, options), std::invalid_argument);
 }
@@ -96,6 +109,90 @@ TEST(Craft, NoisyWavySurfaceBecomesAtLeastTwiceThinner) {
   EXPECT_LT(after, before / 2.0) << "before " << before << " m, after " << after << " m";
   EXPECT_LT(result.num_sampled, raw.size());  // 5 cm voxels merge some of 400 points/m^2
   EXPECT_EQ(result.num_dropped_by_mls, 0u);
+}
+
+// A vertical pole (radius 0.06 m, seen from all sides, as an accumulated map sees a lattice
+// tower's leg) standing on a flat yard, both with Gaussian noise along the surface normal.
+struct PoleScene {
+  static constexpr double kPoleRadius = 0.06, kPoleHeight = 2.0, kYard = 3.0;
+  std::vector<Eigen::Vector3d> points;
+  Eigen::Vector2d pole_xy{1.5, 1.5};
+
+  explicit PoleScene(uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    std::normal_distribution<double> noise(0.0, 0.015);
+    for (int i = 0; i < 1500; ++i) {  // ~1000 points/m^2 of pole surface
+      const double angle = 2.0 * M_PI * uniform(rng), r = kPoleRadius + noise(rng);
+      points.emplace_back(pole_xy.x() + r * std::cos(angle), pole_xy.y() + r * std::sin(angle),
+                          kPoleHeight * uniform(rng));
+    }
+    for (int i = 0; i < 9000; ++i) {  // 1000 points/m^2 of yard, outside the pole
+      const Eigen::Vector2d xy(kYard * uniform(rng), kYard * uniform(rng));
+      if ((xy - pole_xy).norm() < kPoleRadius) continue;
+      points.emplace_back(xy.x(), xy.y(), noise(rng));
+    }
+  }
+  // RMS distance to the pole's mantle (points at mid height) and to the yard (points 0.5 m
+  // or more from the pole and from the border), m.
+  std::pair<double, double> Thickness(const std::vector<Eigen::Vector3d>& cloud) const {
+    double pole_sq = 0, yard_sq = 0;
+    int pole_n = 0, yard_n = 0;
+    for (const Eigen::Vector3d& p : cloud) {
+      const double from_axis = (p.head<2>() - pole_xy).norm();
+      if (p.z() > 0.3 && p.z() < kPoleHeight - 0.3 && from_axis < 0.3) {
+        pole_sq += std::pow(from_axis - kPoleRadius, 2);
+        ++pole_n;
+      } else if (from_axis > 0.5 && p.head<2>().minCoeff() > 0.5 &&
+                 p.head<2>().maxCoeff() < kYard - 0.5) {
+        yard_sq += p.z() * p.z();
+        ++yard_n;
+      }
+    }
+    return {std::sqrt(pole_sq / pole_n), std::sqrt(yard_sq / yard_n)};
+  }
+};
+
+// The scale test's purpose: a single 0.15 m MLS neighbourhood holds the whole circumference of
+// a 0.12 m pole, so its height polynomial cuts through the pole and drags points towards the
+// axis; the two-scale rule keeps the small fit there and the large one on the yard.
+TEST(Craft, TwoScalesKeepAThinPoleWhereOneScaleCollapsesIt) {
+  const PoleScene scene(21);
+  CraftOptions single;  // defaults: 0.05 m voxel, 0.15 m radius, order 2
+  single.mls_small_radius_m = 0.0;
+  const CraftResult one = CraftMap(scene.points, single);
+  const CraftResult two = CraftMap(scene.points, CraftOptions{});
+  ASSERT_TRUE(one.ok && two.ok) << one.message << " / " << two.message;
+  const auto [raw_pole, raw_yard] = scene.Thickness(scene.points);
+  const auto [one_pole, one_yard] = scene.Thickness(one.points_world);
+  const auto [two_pole, two_yard] = scene.Thickness(two.points_world);
+  SCOPED_TRACE(::testing::Message()
+               << "pole raw " << raw_pole << " one scale " << one_pole << " two scales " << two_pole
+               << "; yard raw " << raw_yard << " one " << one_yard << " two " << two_yard << " m");
+  EXPECT_GT(one_pole, raw_pole);  // the failure mode this rule exists for
+  EXPECT_LT(two_pole, raw_pole);  // no worse than leaving the pole alone
+  EXPECT_LT(two_pole, 0.5 * one_pole);
+  EXPECT_LT(two_yard, 0.5 * raw_yard);  // the yard keeps the large scale's smoothing
+  EXPECT_LT(two_yard, 1.15 * one_yard);
+  EXPECT_GT(two.num_small_scale, 0u);
+  EXPECT_LT(two.num_small_scale, two.points_world.size() / 2);  // most points are yard
+}
+
+// MLS fitted to the denser input (not only to the one-per-voxel sample) averages more noise.
+TEST(Craft, DenserSupportMakesTheSurfaceThinner) {
+  const Surface surface = Wavy();
+  const auto raw = SampleNoisy(surface, 6.0, 60000, 0.02, 12);  // ~1700 points/m^2
+  CraftOptions options = TestOptions();
+  options.mls_small_radius_m = 0.0;  // one scale: only the support differs
+  const CraftResult dense = CraftMap(raw, options);
+  options.mls_support_voxel_m = options.voxel_size_m;
+  const CraftResult sparse = CraftMap(raw, options);
+  ASSERT_TRUE(sparse.ok && dense.ok);
+  EXPECT_EQ(sparse.num_support, sparse.num_sampled);
+  EXPECT_GT(dense.num_support, 2 * dense.num_sampled);
+  const double thin_sparse = Thickness(surface, sparse.points_world, 6.0, 0.5);
+  const double thin_dense = Thickness(surface, dense.points_world, 6.0, 0.5);
+  EXPECT_LT(thin_dense, 0.8 * thin_sparse) << thin_sparse << " m vs " << thin_dense << " m";
 }
 
 TEST(Craft, NormalsFollowTheTrueSurface) {

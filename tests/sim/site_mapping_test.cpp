@@ -45,10 +45,12 @@ TEST_F(SiteMappingTest, TruePoseMapIsAsThickAsTheRangeNoise) {
   EXPECT_GE(raw.rms_m, 0.3 * sigma);
 }
 
-// Issue 8 asks for >= 2x; measured (seed 1): 1.47 here, 1.42 on the full 180 s session. The
-// ground gets ~2-2.6x thinner, the thin structures (lattice beams, fences, busbars) barely do:
-// a 0.15 m MLS surface cannot follow a 5 cm beam. The issue's bound is therefore NOT asserted;
-// this guards the part that works and fails if crafting stops thinning the map.
+// Issue 8 asks for >= 2x; measured (seed 1): 2.04 on the full 180 s session (MLS fitted to the
+// raw map thinned to 1.25 cm, two-scale rule), but only 1.49 here: this short, coarse run
+// (1 deg columns, 20 s) has few returns per voxel, so the denser support adds little, and its
+// thin structures (lattice beams, fences, busbars) stay ~8 mm thick. The issue's bound is
+// therefore NOT asserted here; this guards the part that works and fails if crafting stops
+// thinning the map.
 TEST_F(SiteMappingTest, CraftingMakesTheMapThinner) {
   const CraftFigures& c = figures_->craft;
   ASSERT_GT(c.crafted_points, 10000u);
