@@ -167,28 +167,6 @@ void ScanLine(const std::vector<double>& measured, std::size_t first, std::size_
   }
 }
 
-// Gives every NaN entry the value of a nearest (4-neighbour steps) entry with a value, by one
-// breadth-first pass from all of them. Only for holes whose row and column hold no measured
-// particle at all (a few points in a large, nearly empty grid).
-void FloodRemaining(const ClothGrid& grid, std::vector<double>* height_m) {
-  std::vector<double>& height = *height_m;
-  std::vector<std::size_t> queue;
-  for (std::size_t i = 0; i < height.size(); ++i) {
-    if (!std::isnan(height[i])) queue.push_back(i);
-  }
-  for (std::size_t k = 0; k < queue.size(); ++k) {
-    const std::size_t i = queue[k];
-    const int col = static_cast<int>(i % grid.cols);
-    const int row = static_cast<int>(i / grid.cols);
-    for (int n = 0; n < 4; ++n) {
-      const int c = col + kNeighbourCol[n], r = row + kNeighbourRow[n];
-      if (!grid.Contains(c, r) || !std::isnan(height[grid.Index(c, r)])) continue;
-      height[grid.Index(c, r)] = height[i];
-      queue.push_back(grid.Index(c, r));
-    }
-  }
-}
-
 }  // namespace
 
 // The reference implementation (jianboqi/CSF) fills a particle without points with the height
@@ -220,7 +198,9 @@ std::size_t FillHolesAsReference(const ClothGrid& grid, std::vector<double>* hei
     ++filled;
   }
   HYLO_CHECK(filled < height.size(), "no point inside the cloth grid");
-  FloodRemaining(grid, height_m);
+  // Holes whose row and column hold no measured particle (a few points in a large, nearly
+  // empty grid) take the nearest filled value.
+  FillHolesFromNearest(grid, height_m);
   return filled;
 }
 
