@@ -1,6 +1,8 @@
 // Odometry on simulated session A: accuracy against ground truth (ATE after SE(3) alignment,
-// end drift) and per-scan time (median, p99) and peak memory. The pipeline is single-threaded,
-// so the times are one core's. Figures are printed and written as JSON, never asserted.
+// end drift) and per-scan time (median, p99, and per phase) and peak memory. The pipeline is
+// single-threaded, so the times are one core's. After the run, the per-point price of plane
+// association (k-nearest search + plane fit) is measured on the final map, next to nanoflann's
+// search on the same points. Figures are printed and written as JSON, never asserted.
 //
 //   hylo_odometry_benchmark [--lidar vlp16|rs16] [--duration S] [--seed N] [--fast]
 //                           [--json PATH]
@@ -14,11 +16,72 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <random>
 #include <string>
 
 #include "estimation/sim_odometry_util.h"
+#include "hylo/registration/plane_matcher.h"
+#include "nanoflann_tree.h"
 
 namespace {
+
+double ThreadCpuUs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
+}
+
+// The per-point price of plane association on the run's final map: queries are map points
+// moved by up to half a map voxel on each axis (like fresh scan points on mapped surfaces).
+// nanoflann answers the same k-nearest queries on a static tree over the same points, as a
+// yardstick of what an exact search costs on this machine.
+struct AssociationCost {
+  std::size_t queries = 0;
+  double knn_us = 0.0;            // one k-nearest search on the map, us of thread CPU
+  double match_us = 0.0;          // the search plus the plane fit (PlaneMatcher::Match)
+  double nanoflann_knn_us = 0.0;  // the same search with nanoflann
+  double matched_fraction = 0.0;  // queries that found a plane
+};
+
+AssociationCost MeasureAssociation(const hylo::mapping::MapManager& map,
+                                   const hylo::estimation::OdometryPipelineOptions& options) {
+  using hylo::registration::PointCloud;
+  AssociationCost cost;
+  const PointCloud points = map.Flatten();
+  if (points.empty()) return cost;
+  std::mt19937 rng(7);
+  const float half = static_cast<float>(0.5 * options.map.voxel_size_m);
+  std::uniform_real_distribution<float> jitter(-half, half);
+  std::uniform_int_distribution<std::size_t> pick(0, points.size() - 1);
+  PointCloud queries(20000);
+  for (Eigen::Vector3f& q : queries) {
+    q = points[pick(rng)] + Eigen::Vector3f(jitter(rng), jitter(rng), jitter(rng));
+  }
+  const int k = options.planes.num_neighbors;
+  const auto max_distance = static_cast<float>(options.planes.max_neighbor_distance_m);
+  const double n = static_cast<double>(queries.size());
+  std::vector<hylo::registration::Neighbor> neighbors;
+  double start = ThreadCpuUs();
+  for (const Eigen::Vector3f& q : queries) map.KNearest(q, k, max_distance, &neighbors);
+  cost.knn_us = (ThreadCpuUs() - start) / n;
+
+  const hylo::registration::PlaneMatcher matcher(map, options.planes);
+  hylo::registration::Plane plane;
+  std::size_t matched = 0;
+  start = ThreadCpuUs();
+  for (const Eigen::Vector3f& q : queries) matched += matcher.Match(q.cast<double>(), &plane);
+  cost.match_us = (ThreadCpuUs() - start) / n;
+  cost.matched_fraction = matched / n;
+
+  hylo::benchmarks::NanoflannTree nanoflann;
+  nanoflann.Build(points);
+  std::vector<float> d2;
+  start = ThreadCpuUs();
+  for (const Eigen::Vector3f& q : queries) nanoflann.KNearest(q, k, &d2);
+  cost.nanoflann_knn_us = (ThreadCpuUs() - start) / n;
+  cost.queries = queries.size();
+  return cost;
+}
 
 double Percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
@@ -97,22 +160,29 @@ int main(int argc, char** argv) {
   if (iterations > 0) options.estimator.ieskf.max_iterations = iterations;
   const auto start = std::chrono::steady_clock::now();
   sim::SessionSummary summary;
-  const testing::SimRun run =
-      testing::RunSimulatedSession(sim_options, sim::SessionId::kA, options, &summary);
+  const sim::Site site = sim::BuildSite(sim_options.seed, sim_options.terrain);
+  const sim::SessionSimulator simulator(sim_options, site, sim::SessionId::kA);
+  testing::PipelineSink sink(options);
+  summary = simulator.Run(&sink);
+  const testing::SimRun run = sink.Finish();
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (run.failed) {
     std::fprintf(stderr, "pipeline failed: %s\n", run.message.c_str());
     return 1;
   }
-  std::vector<double> total, update, cpu;
-  double points = 0.0;
+  std::vector<double> total, update, cpu, preprocess, map_update, update_iterations;
+  double points = 0.0, matches = 0.0;
   std::size_t degenerate = 0, not_applied = 0;
   for (const auto& r : run.results) {
     total.push_back(r.total_ms);
     cpu.push_back(r.cpu_ms);
     update.push_back(r.update_ms);
+    preprocess.push_back(r.deskew_ms);
+    map_update.push_back(r.map_ms);
+    update_iterations.push_back(r.update.iterations);
     points += r.downsampled_points;
+    matches += r.update.num_matches;
     degenerate += r.update.degenerate ? 1 : 0;
     not_applied += r.update.applied ? 0 : 1;
   }
@@ -133,14 +203,27 @@ int main(int argc, char** argv) {
               "after SE(3) alignment %.4f m = %.3f %%\n",
               ate.end_drift_m, ate.end_drift_percent, end_error_aligned_m,
               100.0 * end_error_aligned_m / std::max(1e-9, ate.path_length_m));
-  std::printf("  per scan: median %.2f ms, p99 %.2f ms, max %.2f ms (update median %.2f ms)\n",
-              Percentile(total, 0.5), Percentile(total, 0.99), Percentile(total, 1.0),
-              Percentile(update, 0.5));
+  std::printf("  per scan: median %.2f ms, p99 %.2f ms, max %.2f ms\n", Percentile(total, 0.5),
+              Percentile(total, 0.99), Percentile(total, 1.0));
   std::printf("  per scan CPU time: median %.2f ms, p99 %.2f ms, max %.2f ms\n",
               Percentile(cpu, 0.5), Percentile(cpu, 0.99), Percentile(cpu, 1.0));
+  std::printf("  per scan medians: clean-up + downsampling + undistortion %.2f ms, update %.2f ms "
+              "(%.0f iterations, %.0f %% of points matched to planes), map insertion %.2f ms\n",
+              Percentile(preprocess, 0.5), Percentile(update, 0.5),
+              Percentile(update_iterations, 0.5), 100.0 * matches / std::max(1.0, points),
+              Percentile(map_update, 0.5));
   std::printf("  scans degenerate %zu, not applied %zu; map %zu points; peak memory %.0f MB "
               "(simulator included); wall %.1f s (simulation included)\n",
               degenerate, not_applied, run.map_points, peak_mb, wall_s);
+  const AssociationCost association = MeasureAssociation(sink.pipeline().map(), options);
+  const double points_per_scan = points / std::max<std::size_t>(1, total.size());
+  std::printf("  plane association on the final map (%zu queries, %.0f %% find a plane): "
+              "%d-NN search %.2f us (nanoflann %.2f us), with the plane fit %.2f us per point "
+              "= %.2f ms for %.0f points\n",
+              association.queries, 100.0 * association.matched_fraction,
+              options.planes.num_neighbors, association.knn_us, association.nanoflann_knn_us,
+              association.match_us, association.match_us * points_per_scan * 1e-3,
+              points_per_scan);
   if (!trace_path.empty()) {  // t, estimated and true pose (x y z qx qy qz qw) per scan
     std::ofstream out(trace_path);
     out.precision(9);
@@ -161,7 +244,10 @@ int main(int argc, char** argv) {
         << ate.end_drift_percent << ", \"ms_median\": " << Percentile(total, 0.5)
         << ", \"ms_p99\": " << Percentile(total, 0.99) << ", \"cpu_ms_median\": "
         << Percentile(cpu, 0.5) << ", \"cpu_ms_p99\": " << Percentile(cpu, 0.99)
-        << ", \"peak_memory_mb\": " << peak_mb
+        << ", \"peak_memory_mb\": " << peak_mb << ", \"update_ms_median\": "
+        << Percentile(update, 0.5) << ", \"knn_us\": " << association.knn_us
+        << ", \"nanoflann_knn_us\": " << association.nanoflann_knn_us
+        << ", \"plane_match_us\": " << association.match_us
         << "}\n";
   }
   return 0;
