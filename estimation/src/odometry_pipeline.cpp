@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "hylo/common/check.h"
 #include "hylo/common/time.h"
@@ -21,15 +22,38 @@ MeasurementQueueOptions QueueOptions(const OdometryPipelineOptions& o) {
   return q;
 }
 
-// The scan's points kept by uniform sampling of their raw positions (times and rings kept).
-LidarScan DownsampleScan(const LidarScan& scan, double voxel_m) {
+// Every `stride`-th return of each ring, in the driver's order (a ring's returns arrive in
+// time order, so this thins each scan line evenly along the sweep).
+std::vector<std::size_t> StridedIndices(const LidarScan& scan, int stride) {
+  std::vector<std::size_t> kept;
+  kept.reserve(scan.points.size() / static_cast<std::size_t>(stride) + 1);
+  std::vector<int> seen_in_ring;
+  for (std::size_t i = 0; i < scan.points.size(); ++i) {
+    const uint16_t ring = scan.points[i].ring;
+    if (ring >= seen_in_ring.size()) seen_in_ring.resize(ring + 1u, 0);
+    if (seen_in_ring[ring]++ % stride == 0) kept.push_back(i);
+  }
+  return kept;
+}
+
+// The scan's points kept by the ring stride, then by uniform sampling of their raw positions
+// (times and rings kept).
+LidarScan DownsampleScan(const LidarScan& scan, double voxel_m, int stride = 1) {
   LidarScan kept;
   kept.t_ns = scan.t_ns;
   kept.end_t_ns = scan.end_t_ns;
   kept.frame_id = scan.frame_id;
-  const registration::PointCloud positions = PointsOf(scan);
-  for (std::size_t i : registration::UniformSampleIndices(positions, static_cast<float>(voxel_m))) {
-    kept.points.push_back(scan.points[i]);
+  std::vector<std::size_t> candidates;
+  registration::PointCloud positions;
+  if (stride > 1) {
+    candidates = StridedIndices(scan, stride);
+    positions.reserve(candidates.size());
+    for (std::size_t i : candidates) positions.push_back(scan.points[i].position_lidar);
+  } else {
+    positions = PointsOf(scan);
+  }
+  for (std::size_t j : registration::UniformSampleIndices(positions, static_cast<float>(voxel_m))) {
+    kept.points.push_back(scan.points[stride > 1 ? candidates[j] : j]);
   }
   return kept;
 }
@@ -65,6 +89,8 @@ bool PreprocessOptions::IsValid(std::string* why) const {
     os << "max_point_offset_s = " << max_point_offset_s << ": must be finite and > 0";
   } else if (!(scan_voxel_m >= 0.0) || !std::isfinite(scan_voxel_m)) {
     os << "scan_voxel_m = " << scan_voxel_m << ": must be finite and >= 0";
+  } else if (point_stride < 1) {
+    os << "point_stride = " << point_stride << ": must be >= 1 (1 = keep every return)";
   } else if (min_points < 1) {
     os << "min_points = " << min_points << ": must be >= 1";
   } else {
@@ -216,7 +242,7 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
   result->raw_points = scan.points.size();
   // Downsample first, then undistort only the kept points: the voxel (0.5 m) is much larger
   // than the motion within one sweep, and undistortion is the per-point cost.
-  LidarScan kept = DownsampleScan(scan, pre.scan_voxel_m);
+  LidarScan kept = DownsampleScan(scan, pre.scan_voxel_m, pre.point_stride);
   DeskewedScan ds;
   ds.t_ns = scan.end_t_ns;
   ds.points_lidar =

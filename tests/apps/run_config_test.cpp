@@ -128,13 +128,14 @@ TEST(TransformConfig, RollPitchYawComposeAsZYX) {
 
 TEST(RunConfig, OdometrySectionsParseValidateAndRoundTrip) {
   const RunConfig config = ParseRunConfig(
-      "preprocess: {scan_voxel_m: 0.4}\n"
+      "preprocess: {scan_voxel_m: 0.4, point_stride: 3}\n"
       "ieskf: {max_iterations: 6, online_extrinsic: true}\n"
       "planes: {planarity_threshold_m: 0.05}\n"
       "map: {voxel_size_m: 0.3, window_size_m: 0}\n"
       "init: {duration_s: 2.0}\n",
       "test.yaml");
   EXPECT_DOUBLE_EQ(config.preprocess.scan_voxel_m, 0.4);
+  EXPECT_EQ(config.preprocess.point_stride, 3);
   EXPECT_EQ(config.ieskf.max_iterations, 6);
   EXPECT_TRUE(config.ieskf.online_extrinsic);
   const RunConfig back = ParseRunConfig(ToYaml(config), "saved.yaml");
@@ -154,6 +155,7 @@ TEST(RunConfig, OdometrySectionsRejectUnknownKeysAndBadValues) {
   ExpectConfigError("ieskf: {max_iterations: 0}\n", {"ieskf.max_iterations", ">= 1"});
   ExpectConfigError("planes: {num_neighbors: 2}\n", {"planes.num_neighbors"});
   ExpectConfigError("map: {voxel_size_m: -1}\n", {"map.voxel_size_m"});
+  ExpectConfigError("preprocess: {point_stride: 0}\n", {"preprocess.point_stride", ">= 1"});
 }
 
 TEST(RunConfig, ImuNoneSelectsTheNoImuPipeline) {

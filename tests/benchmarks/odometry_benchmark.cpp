@@ -5,7 +5,7 @@
 // search on the same points. Figures are printed and written as JSON, never asserted.
 //
 //   hylo_odometry_benchmark [--lidar vlp16|rs16] [--duration S] [--seed N] [--fast]
-//                           [--json PATH]
+//                           [--scan-voxel M] [--point-stride N] [--json PATH]
 // --fast uses the simulator's coarse settings (1 deg columns) as the CI test does.
 
 #include <sys/resource.h>
@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
   bool fast = false, no_deskew = false, imu_noise_free = false;
   // Settings to explore (defaults = the library's defaults).
   double accel_bias_sigma = -1.0, lidar_noise = -1.0, rotation_sigma = -1.0, gravity_sigma = -1.0, scan_voxel = -1.0, map_voxel = -1.0;
-  int iterations = -1;
+  int iterations = -1, point_stride = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool has_value = i + 1 < argc;
@@ -123,6 +123,8 @@ int main(int argc, char** argv) {
       scan_voxel = std::atof(argv[++i]);
     } else if (a == "--map-voxel" && has_value) {
       map_voxel = std::atof(argv[++i]);
+    } else if (a == "--point-stride" && has_value) {
+      point_stride = std::atoi(argv[++i]);
     } else if (a == "--iterations" && has_value) {
       iterations = std::atoi(argv[++i]);
     } else if (a == "--trace" && has_value) {
@@ -157,6 +159,7 @@ int main(int argc, char** argv) {
   if (gravity_sigma > 0) options.estimator.ieskf.init_gravity_sigma_mps2 = gravity_sigma;
   if (scan_voxel >= 0) options.preprocess.scan_voxel_m = scan_voxel;
   if (map_voxel > 0) options.map.voxel_size_m = map_voxel;
+  if (point_stride > 0) options.preprocess.point_stride = point_stride;
   if (iterations > 0) options.estimator.ieskf.max_iterations = iterations;
   const auto start = std::chrono::steady_clock::now();
   sim::SessionSummary summary;

@@ -43,6 +43,7 @@ void VisitFields(V& v, TransformConfig& transform) {
 template <class V>
 void VisitFields(V& v, estimation::PreprocessOptions& o) {
   v("scan_voxel_m", o.scan_voxel_m);
+  v("point_stride", o.point_stride);
   v("max_point_offset_s", o.max_point_offset_s);
   v("min_points", o.min_points);
   v("deskew", o.deskew);

@@ -25,6 +25,9 @@ struct PreprocessOptions {
   double max_range_m = 100.0;       ///< farther returns are dropped, m (> min_range_m)
   double max_point_offset_s = 0.2;  ///< per-point times beyond this after the start are bad, s
   double scan_voxel_m = 0.5;        ///< uniform-sampling voxel of the scan, m (0 = keep all)
+  int point_stride = 1;             ///< before the voxel, keep every n-th return of each ring
+                                    ///< (FAST-LIO2's point_filter_num): less work per scan
+                                    ///< on dense sensors, sparser far surfaces (>= 1)
   int min_points = 100;             ///< fewer points after clean-up: the scan is skipped
   bool deskew = true;               ///< undistort with the IMU (always off without IMU)
   bool IsValid(std::string* why) const;
