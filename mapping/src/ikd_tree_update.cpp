@@ -42,7 +42,19 @@ IkdTree::InsertSummary IkdTree::Insert(const registration::PointCloud& points, f
     if (voxel_size_m != cache_voxel_m_) ResetVoxelCache(voxel_size_m);
     GrowVoxelCache();
   }
-  for (const Eigen::Vector3f& p : points) {
+  // The voxel cache is read at a random set per point, usually a cache miss (the sets span
+  // up to 1 MiB): asking for the set a few points ahead overlaps those misses (map insertion
+  // ~0.8 -> ~0.7 ms per scan on session A).
+  constexpr std::size_t kPrefetchAhead = 8;
+  const bool prefetch = voxel_size_m > 0.f && !cache_sets_.empty();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3f& p = points[i];
+    if (prefetch && i + kPrefetchAhead < points.size()) {
+      const Eigen::Vector3f& ahead = points[i + kPrefetchAhead];
+      if (ahead.allFinite()) {
+        __builtin_prefetch(&cache_sets_[CacheSlotOf(VoxelOf(ahead, voxel_size_m)).set]);
+      }
+    }
     if (!p.allFinite()) {
       ++summary.num_nonfinite;
     } else if (voxel_size_m > 0.f) {
