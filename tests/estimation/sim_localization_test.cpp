@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "estimation/sim_localization_util.h"
+#include "hylo/mapping/ikd_tree.h"
 #include "hylo/registration/cloud_distance.h"
 #include "hylo/sim/surface_distance.h"
 #include "hylo/sim/world.h"
@@ -106,7 +107,7 @@ LocalizationRun RunSessionB(const sim::SimulationOptions& sim_options,
     run.ate = estimation::ComputeAte(run.sink->Estimate(), run.sink->truth);
     mapping::IkdTree reference{mapping::IkdTree::Options()};
     reference.Build(SharedPrior().points_map);
-    run.c2c = registration::CloudToCloudDistance(run.sink->dense.Flatten(), reference);
+    run.c2c = registration::CloudToCloudDistance(run.sink->dense.points(), reference);
   }
   return run;
 }

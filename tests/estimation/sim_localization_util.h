@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "estimation/sim_odometry_util.h"
-#include "hylo/mapping/ikd_tree.h"
+#include "hylo/registration/voxel_filter.h"
 #include "hylo/sim/site_layout.h"
 
 namespace hylo::testing {
@@ -25,7 +25,7 @@ namespace hylo::testing {
 class LocalizationSink : public sim::SessionSink {
  public:
   LocalizationSink(const estimation::OdometryPipelineOptions& options, float dense_voxel_m)
-      : pipeline(options), dense_voxel_m_(dense_voxel_m) {}
+      : pipeline(options), dense(dense_voxel_m) {}
 
   void OnImu(const estimation::ImuSample& s) override { pipeline.AddImu(s); }
   void OnScan(const estimation::LidarScan& s) override {
@@ -49,7 +49,7 @@ class LocalizationSink : public sim::SessionSink {
   estimation::OdometryPipeline pipeline;
   std::vector<estimation::ScanResult> results;  // registered points moved into `dense`
   std::vector<estimation::TimedPose> truth;     // T_site_imu at the IMU rate
-  mapping::IkdTree dense{mapping::IkdTree::Options()};
+  registration::UniformSampler dense;
   /// Called before the scan with this index enters the pipeline (e.g. a relocalization).
   std::function<void(std::size_t, estimation::OdometryPipeline*)> before_scan;
 
@@ -59,12 +59,11 @@ class LocalizationSink : public sim::SessionSink {
     pipeline.Process(&results, flush);
     for (std::size_t i = first; i < results.size(); ++i) {
       auto& points = results[i].registered_points_map;
-      if (!points.empty()) dense.Insert(points, dense_voxel_m_);
+      if (!points.empty()) dense.Add(points);
       registration::PointCloud().swap(points);
     }
   }
 
-  float dense_voxel_m_;
   std::size_t scans_seen_ = 0;
 };
 
@@ -83,7 +82,7 @@ inline SimPrior BuildSimPrior(const sim::SimulationOptions& sim_options, const s
   sim::SessionSimulator(sim_options, site, sim::SessionId::kA).Run(&sink);
   sink.Finish();
   SimPrior prior;
-  prior.points_map = sink.dense.Flatten();
+  prior.points_map = sink.dense.points();
   const std::vector<estimation::TimedPose> estimate = sink.Estimate();
   if (estimate.empty()) return prior;
   Eigen::Isometry3d T_site_imu;

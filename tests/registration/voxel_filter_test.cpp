@@ -1,8 +1,10 @@
+#include "hylo/common/check.h"
 #include "hylo/registration/voxel_filter.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 #include <tuple>
@@ -46,6 +48,41 @@ TEST(UniformSample, NonPositiveVoxelReturnsInput) {
   const PointCloud cloud = {{1, 2, 3}, {1, 2, 3}};
   EXPECT_EQ(UniformSample(cloud, 0.f).size(), 2u);
   EXPECT_TRUE(UniformSample({}, 0.5f).empty());
+}
+
+TEST(UniformSampler, StreamEqualsUniformSampleOfEverythingAdded) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-3.f, 3.f);
+  PointCloud all;
+  UniformSampler sampler(0.25f);
+  for (int chunk = 0; chunk < 5; ++chunk) {  // overlapping chunks: later points replace earlier
+    PointCloud part(3000);
+    for (auto& p : part) p = {u(rng), u(rng), 0.3f * u(rng)};
+    all.insert(all.end(), part.begin(), part.end());
+    EXPECT_EQ(sampler.Add(part), 0u);
+    const PointCloud expected = UniformSample(all, 0.25f);
+    ASSERT_EQ(sampler.points().size(), expected.size()) << "after chunk " << chunk;
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      ASSERT_EQ(sampler.points()[i], expected[i]) << "point " << i << " after chunk " << chunk;
+    }
+  }
+  EXPECT_GT(sampler.MemoryBytes(), sampler.points().size() * sizeof(Eigen::Vector3f));
+}
+
+TEST(UniformSampler, SkipsAndCountsUnusablePoints) {
+  UniformSampler sampler(0.1f);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(sampler.Add({{0.f, 0.f, 0.f}, {nan, 0.f, 0.f}, {0.f, inf, 0.f}, {3e8f, 0.f, 0.f}}),
+            3u);
+  ASSERT_EQ(sampler.points().size(), 1u);
+  EXPECT_EQ(sampler.points()[0], Eigen::Vector3f::Zero());
+}
+
+TEST(UniformSampler, RejectsANonPositiveOrNonFiniteVoxel) {
+  EXPECT_THROW(UniformSampler(0.f), InternalError);
+  EXPECT_THROW(UniformSampler(-0.1f), InternalError);
+  EXPECT_THROW(UniformSampler(std::numeric_limits<float>::quiet_NaN()), InternalError);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "hylo/common/time.h"
@@ -16,6 +17,7 @@
 #include "hylo/mapping/prior_map.h"
 #include "hylo/registration/cloud_distance.h"
 #include "hylo/registration/pose_guess.h"
+#include "hylo/registration/voxel_filter.h"
 #include "run_outputs.h"
 
 namespace hylo::run {
@@ -123,13 +125,16 @@ RunResult RunLog(const RunRequest& request) {
   auto log = io::OpenLog(request.log, config.LogOptions());
   std::vector<ScanResult> results;
   // Dense registered scans, one point per voxel (the crafting input and the c2c metric).
+  // A hash of voxels, not a tree: nothing searches this map during the run, and the tree's
+  // downsampling insert cost as much per scan as the odometry (hylo map, session A).
   const float dense_voxel_m = static_cast<float>(config.output.dense_map_voxel_m);
-  mapping::IkdTree dense_map{mapping::IkdTree::Options()};
+  std::optional<registration::UniformSampler> dense_map;
+  if (dense_voxel_m > 0.f) dense_map.emplace(dense_voxel_m);
   std::size_t consumed = 0;
   auto consume_dense = [&] {
     for (; consumed < results.size(); ++consumed) {
       auto& points = results[consumed].registered_points_map;
-      if (dense_voxel_m > 0.f && !points.empty()) dense_map.Insert(points, dense_voxel_m);
+      if (dense_map && !points.empty()) dense_map->Add(points);
       registration::PointCloud().swap(points);
     }
   };
@@ -164,8 +169,9 @@ RunResult RunLog(const RunRequest& request) {
   if (localizing && pipeline.map().run_size() > 0) {
     WriteMapFile(request.out_dir + "/map_added.pcd", pipeline.map().FlattenRun(), origin_world);
   }
-  const registration::PointCloud dense = dense_map.Flatten();
-  if (dense_voxel_m > 0.f) WriteMapFile(request.out_dir + "/map_dense.pcd", dense, origin_world);
+  const registration::PointCloud no_dense_map;
+  const registration::PointCloud& dense = dense_map ? dense_map->points() : no_dense_map;
+  if (dense_map) WriteMapFile(request.out_dir + "/map_dense.pcd", dense, origin_world);
 
   double path_m = 0.0;
   std::vector<double> cpu_ms;
