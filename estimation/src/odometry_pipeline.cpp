@@ -52,9 +52,10 @@ LidarScan DownsampleScan(const LidarScan& scan, double voxel_m, int stride = 1) 
   } else {
     positions = PointsOf(scan);
   }
-  for (std::size_t j : registration::UniformSampleIndices(positions, static_cast<float>(voxel_m))) {
-    kept.points.push_back(scan.points[stride > 1 ? candidates[j] : j]);
-  }
+  const std::vector<std::size_t> sampled =
+      registration::UniformSampleIndices(positions, static_cast<float>(voxel_m));
+  kept.points.reserve(sampled.size());
+  for (std::size_t j : sampled) kept.points.push_back(scan.points[stride > 1 ? candidates[j] : j]);
   return kept;
 }
 

@@ -14,7 +14,8 @@ namespace hylo::estimation {
 
 /// Every point of `scan` in the lidar frame at `scan.end_t_ns`. `knot_times_ns` are the
 /// times at which `estimator.PredictAt` is evaluated (the IMU stamps inside the scan; the
-/// scan start and end are added); poses between knots are interpolated (slerp + lerp).
+/// scan start and end are added); poses between knots are interpolated (rotation: normalised
+/// lerp between knots under 0.05 rad apart, slerp otherwise; translation: lerp).
 registration::PointCloud Undistort(const LidarScan& scan, const Estimator& estimator,
                                    const std::vector<int64_t>& knot_times_ns);
 
