@@ -1,5 +1,6 @@
 #include "hylo/registration/voxel_filter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -47,6 +48,8 @@ class VoxelTable {
   // the cache on almost every voxel).
   void Prefetch(const int32_t* key) const { __builtin_prefetch(&slots_[Home(key)]); }
 
+  std::size_t MemoryBytes() const { return slots_.capacity() * sizeof(Slot); }
+
  private:
   // Spatial hash primes (Teschner et al. 2003), then a Fibonacci mix so that the low bits
   // used by the mask depend on every coordinate.
@@ -81,9 +84,6 @@ class VoxelTable {
 
   std::vector<Slot> slots_;
   std::size_t used_ = 0;
-
- public:
-  std::size_t MemoryBytes() const { return slots_.capacity() * sizeof(Slot); }
 };
 
 // std::floor for a value in int range, without the library call that x86-64 without SSE4.1
@@ -93,10 +93,6 @@ int32_t FloorToInt(float x) {
   return truncated - (x < static_cast<float>(truncated) ? 1 : 0);
 }
 
-// Offers `point` to its voxel in `table`. A new voxel records `next_position` (the caller
-// appends the point there); a point nearer the centre than the voxel's takes its place
-// (returned through `replaced_position`); otherwise the voxel keeps its point.
-enum class Offer { kNewVoxel, kReplaces, kRejected };
 void VoxelKeyOf(const Eigen::Vector3f& point, float inverse_voxel, int32_t* key) {
   const Eigen::Vector3f scaled = point * inverse_voxel;
   key[0] = FloorToInt(scaled.x());
@@ -104,6 +100,11 @@ void VoxelKeyOf(const Eigen::Vector3f& point, float inverse_voxel, int32_t* key)
   key[2] = FloorToInt(scaled.z());
 }
 
+enum class Offer { kNewVoxel, kReplaces, kRejected };
+
+// Offers `point` to its voxel in `table`. A new voxel records `next_position` (the caller
+// appends the point there); a point nearer the centre than the voxel's takes its place
+// (returned through `replaced_position`); otherwise the voxel keeps its point.
 Offer OfferPoint(const Eigen::Vector3f& point, float voxel_size_m, float inverse_voxel,
                  uint32_t next_position, VoxelTable* table, uint32_t* replaced_position) {
   int32_t key[3];
@@ -137,8 +138,10 @@ std::vector<std::size_t> UniformSampleIndices(const PointCloud& points, float vo
   }
   thread_local VoxelTable table;
   // Sized for half the points as voxels: a 0.5 m scan voxel keeps ~10 % of a 16-beam scan,
-  // a 0.1 m dense copy ~60 %; growing (rehashing) mid-scan cost more than a larger clear.
-  table.Reset(points.size() / 2 + 16);
+  // a 0.1 m dense copy ~60 %, and growing (rehashing) mid-scan cost more than a larger
+  // clear. Map-sized clouds start at 1M voxels (40 MiB) and grow only if they need to.
+  constexpr std::size_t kMaxInitialVoxels = std::size_t{1} << 20;
+  table.Reset(std::min(points.size() / 2, kMaxInitialVoxels) + 16);
   const float inverse_voxel = 1.f / voxel_size_m;
   for (std::size_t i = 0; i < points.size(); ++i) {
     uint32_t position = 0;
