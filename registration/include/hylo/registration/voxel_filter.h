@@ -1,5 +1,6 @@
 #pragma once
-// Voxel-grid downsampling shared by the scan pre-processing, the map and map crafting.
+// Voxel-grid downsampling shared by the scan pre-processing, the dense map of a run, the map
+// and map crafting.
 
 #include <cstddef>
 #include <memory>
