@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cstdint>
-#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -38,13 +37,10 @@ registration::PointCloud MlsSupport(const registration::PointCloud& local,
   std::vector<uint8_t> role(local.size(), 0);
   for (const std::size_t i : sampled) role[i] = kQuery;
   if (options.voxel_size_m > 0.0 && options.mls_support_voxel_m < options.voxel_size_m) {
-    if (options.mls_support_voxel_m <= 0.0) {
-      for (uint8_t& r : role) r |= kSupport;
-    } else {
-      const float voxel = static_cast<float>(options.mls_support_voxel_m);
-      for (const std::size_t i : registration::UniformSampleIndices(local, voxel)) {
-        role[i] |= kSupport;
-      }
+    // A support voxel of 0 keeps every point (UniformSampleIndices returns them all).
+    const float voxel = static_cast<float>(options.mls_support_voxel_m);
+    for (const std::size_t i : registration::UniformSampleIndices(local, voxel)) {
+      role[i] |= kSupport;
     }
   }
   registration::PointCloud support;
@@ -99,12 +95,9 @@ CraftResult CraftMap(const std::vector<Eigen::Vector3d>& points_world,
     return result;
   }
   auto start = std::chrono::steady_clock::now();
-  std::vector<std::size_t> sampled(local.size());
-  if (options.voxel_size_m > 0.0) {
-    sampled = registration::UniformSampleIndices(local, static_cast<float>(options.voxel_size_m));
-  } else {
-    std::iota(sampled.begin(), sampled.end(), 0);
-  }
+  // A voxel of 0 keeps every point (UniformSampleIndices returns them all).
+  const std::vector<std::size_t> sampled =
+      registration::UniformSampleIndices(local, static_cast<float>(options.voxel_size_m));
   result.sampling_seconds = SecondsSince(start);
   result.num_sampled = sampled.size();
 

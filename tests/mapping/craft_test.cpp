@@ -73,27 +73,21 @@ CraftOptions TestOptions() {
 TEST(CraftOptions, DefaultsValidAndBadFieldsNamed) {
   std::string why;
   EXPECT_TRUE(CraftOptions{}.IsValid(&why)) << why;
+  const std::vector<std::pair<std::string, std::function<void(CraftOptions*)>>> bad = {
+      {"mls_search_radius_m", [](CraftOptions* o) { o->mls_search_radius_m = 0.0; }},
+      {"polynomial_order", [](CraftOptions* o) { o->polynomial_order = 7; }},
+      {"mls_small_radius_m",
+       [](CraftOptions* o) { o->mls_small_radius_m = o->mls_search_radius_m; }},
+      {"mls_support_voxel_m", [](CraftOptions* o) { o->mls_support_voxel_m = -0.01; }},
+      {"scale_consistency_sigmas", [](CraftOptions* o) { o->scale_consistency_sigmas = 0.0; }},
+  };
+  for (const auto& [field, spoil] : bad) {
+    CraftOptions options;
+    spoil(&options);
+    EXPECT_FALSE(options.IsValid(&why)) << field;
+    EXPECT_NE(why.find(field), std::string::npos) << why;
+  }
   CraftOptions options;
-  options.mls_search_radius_m = 0.0;
-  EXPECT_FALSE(options.IsValid(&why));
-  EXPECT_NE(why.find("mls_search_radius_m"), std::string::npos) << why;
-  options = CraftOptions{};
-  options.polynomial_order = 7;
-  EXPECT_FALSE(options.IsValid(&why));
-  EXPECT_NE(why.find("polynomial_order"), std::string::npos) << why;
-  options = CraftOptions{};
-  options.mls_small_radius_m = options.mls_search_radius_m;
-  EXPECT_FALSE(options.IsValid(&why));
-  EXPECT_NE(why.find("mls_small_radius_m"), std::string::npos) << why;
-  options = CraftOptions{};
-  options.mls_support_voxel_m = -0.01;
-  EXPECT_FALSE(options.IsValid(&why));
-  EXPECT_NE(why.find("mls_support_voxel_m"), std::string::npos) << why;
-  options = CraftOptions{};
-  options.scale_consistency_sigmas = 0.0;
-  EXPECT_FALSE(options.IsValid(&why));
-  EXPECT_NE(why.find("scale_consistency_sigmas"), std::string::npos) << why;
-  options = CraftOptions{};
   options.num_threads = 0;
   EXPECT_THROW(CraftMap({{0, 0, 0}}, options), std::invalid_argument);
 }
