@@ -19,17 +19,12 @@
 #include <random>
 #include <string>
 
+#include "benchmark_common.h"
 #include "estimation/sim_odometry_util.h"
 #include "hylo/registration/plane_matcher.h"
 #include "nanoflann_tree.h"
 
 namespace {
-
-double ThreadCpuUs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
-}
 
 // The per-point price of plane association on the run's final map: queries are map points
 // moved by up to half a map voxel on each axis (like fresh scan points on mapped surfaces).
@@ -61,24 +56,25 @@ AssociationCost MeasureAssociation(const hylo::mapping::MapManager& map,
   const auto max_distance = static_cast<float>(options.planes.max_neighbor_distance_m);
   const double n = static_cast<double>(queries.size());
   std::vector<hylo::registration::Neighbor> neighbors;
-  double start = ThreadCpuUs();
+  using hylo::benchmarks::NowMs;  // thread CPU time, ms
+  double start_ms = NowMs();
   for (const Eigen::Vector3f& q : queries) map.KNearest(q, k, max_distance, &neighbors);
-  cost.knn_us = (ThreadCpuUs() - start) / n;
+  cost.knn_us = 1e3 * (NowMs() - start_ms) / n;
 
   const hylo::registration::PlaneMatcher matcher(map, options.planes);
   hylo::registration::Plane plane;
   std::size_t matched = 0;
-  start = ThreadCpuUs();
+  start_ms = NowMs();
   for (const Eigen::Vector3f& q : queries) matched += matcher.Match(q.cast<double>(), &plane);
-  cost.match_us = (ThreadCpuUs() - start) / n;
+  cost.match_us = 1e3 * (NowMs() - start_ms) / n;
   cost.matched_fraction = matched / n;
 
   hylo::benchmarks::NanoflannTree nanoflann;
   nanoflann.Build(points);
   std::vector<float> d2;
-  start = ThreadCpuUs();
+  start_ms = NowMs();
   for (const Eigen::Vector3f& q : queries) nanoflann.KNearest(q, k, &d2);
-  cost.nanoflann_knn_us = (ThreadCpuUs() - start) / n;
+  cost.nanoflann_knn_us = 1e3 * (NowMs() - start_ms) / n;
   cost.queries = queries.size();
   return cost;
 }
@@ -162,11 +158,10 @@ int main(int argc, char** argv) {
   if (point_stride > 0) options.preprocess.point_stride = point_stride;
   if (iterations > 0) options.estimator.ieskf.max_iterations = iterations;
   const auto start = std::chrono::steady_clock::now();
-  sim::SessionSummary summary;
   const sim::Site site = sim::BuildSite(sim_options.seed, sim_options.terrain);
   const sim::SessionSimulator simulator(sim_options, site, sim::SessionId::kA);
   testing::PipelineSink sink(options);
-  summary = simulator.Run(&sink);
+  simulator.Run(&sink);
   const testing::SimRun run = sink.Finish();
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
