@@ -10,7 +10,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-bash scripts/build.sh
+bash scripts/build.sh hylo  # the command line alone: the tests are built by scripts/test.sh
 args=(--out "${HYLO_DEMO_OUT:-out/demo}")
 [ "${HYLO_DEMO_QUICK:-0}" = 1 ] && args+=(--quick)
 "${HYLO_BUILD_DIR:-build}/apps/hylo" demo "${args[@]}"

@@ -88,8 +88,8 @@ int RunChild(const std::vector<std::string>& args, std::string* error) {
   return WEXITSTATUS(status);
 }
 
-std::vector<estimation::TimedPose> ToTimed(const std::vector<io::StampedPose>& poses) {
-  std::vector<estimation::TimedPose> out;
+std::vector<evaluation::TimedPose> ToTimed(const std::vector<io::StampedPose>& poses) {
+  std::vector<evaluation::TimedPose> out;
   for (const io::StampedPose& p : poses) out.push_back({p.t_ns, p.T_world_body()});
   return out;
 }
@@ -116,12 +116,6 @@ BackendRun RunOne(const BackendRunsRequest& request, const std::string& backend)
   BackendRun run;
   run.row.backend = backend;
   run.dir = request.out_dir + "/" + backend;
-  std::string why;
-  if (!BackendAvailable(backend, &why)) {
-    run.row.status = report::RowStatus::kNotAvailable;
-    run.row.note = why;
-    return run;
-  }
   std::filesystem::remove(run.dir + "/error.txt");
   std::string error;
   const int status = RunChild(ChildArguments(request, backend), &error);
@@ -149,33 +143,18 @@ const std::vector<std::string>& AllBackends() {
   return kBackends;
 }
 
-bool BackendAvailable(const std::string& backend, std::string* why) {
-  estimation::Estimator::Options options = config::RunConfig().PipelineOptions().estimator;
-  if (!estimation::ParseBackend(backend, &options.backend)) {
-    *why = "unknown back-end '" + backend + "'";
-    return false;
-  }
-  try {
-    estimation::Estimator::Create(options);
-  } catch (const std::invalid_argument& e) {
-    *why = e.what();
-    return false;
-  }
-  return true;
-}
-
-estimation::AteResult EvaluateTrajectory(const std::vector<io::StampedPose>& trajectory,
+evaluation::AteResult EvaluateTrajectory(const std::vector<io::StampedPose>& trajectory,
                                          const std::string& ground_truth, double rpe_delta_m,
                                          report::BackendRow* row) {
   const auto estimate = ToTimed(trajectory);
   const auto truth = ToTimed(io::ReadTum(ground_truth));
-  estimation::AteOptions ate_options;  // SE(3) Umeyama: the map frame is not the truth's
-  estimation::AteResult ate = estimation::ComputeAte(estimate, truth, ate_options);
+  evaluation::AteOptions ate_options;  // SE(3) Umeyama: the map frame is not the truth's
+  evaluation::AteResult ate = evaluation::ComputeAte(estimate, truth, ate_options);
   if (ate.ok) row->ate_rmse_m = ate.rmse_m;
-  estimation::RpeOptions rpe_options;
-  rpe_options.unit = estimation::DeltaUnit::kMeters;
+  evaluation::RpeOptions rpe_options;
+  rpe_options.unit = evaluation::DeltaUnit::kMeters;
   rpe_options.delta = rpe_delta_m;
-  const estimation::RpeResult rpe = estimation::ComputeRpe(estimate, truth, rpe_options);
+  const evaluation::RpeResult rpe = evaluation::ComputeRpe(estimate, truth, rpe_options);
   if (rpe.ok) row->rpe_rmse_m = rpe.rmse_m;
   if (!ate.ok) row->note = "ATE: " + ate.message;
   return ate;
@@ -199,7 +178,9 @@ void RunBackendHere(const BackendRunsRequest& request, const std::string& backen
     run::RunRequest run;
     run.log = request.log;
     run.config = config::LoadRunConfig(request.config_path);
-    run.config.backend = backend;
+    if (!estimation::ParseBackend(backend, &run.config.pipeline.estimator.backend)) {
+      throw std::invalid_argument("unknown back-end '" + backend + "'");
+    }
     run.prior_map = request.prior_map;
     if (!request.prior_map.empty())
       run.guess_world_imu = registration::ParsePoseGuess(request.guess);

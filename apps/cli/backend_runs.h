@@ -3,13 +3,13 @@
 // (/proc/self/exe), so that every back-end's peak memory is its own: `hylo compare` and the
 // localization step of `hylo demo`. The child is `hylo compare ... --only-backend NAME`
 // (RunLog into out_dir/NAME); the parent reads the child's files back and evaluates the
-// trajectory against ground truth. A back-end that is not built into this executable gets a
-// "not available" row, a child that fails a "failed" row with its error: never a crash.
+// trajectory against ground truth. A child that fails gets a "failed" row with its error:
+// never a crash.
 
 #include <string>
 #include <vector>
 
-#include "hylo/estimation/trajectory_metrics.h"
+#include "hylo/evaluation/trajectory_metrics.h"
 #include "hylo/io/trajectory_io.h"
 #include "hylo/report/backend_table.h"
 
@@ -34,7 +34,7 @@ struct BackendRun {
   report::BackendRow row;                   ///< the table row
   std::string dir;                          ///< its output folder
   std::vector<io::StampedPose> trajectory;  ///< T_world_imu (empty unless the run finished)
-  estimation::AteResult ate;                ///< against ground truth (SE(3) aligned)
+  evaluation::AteResult ate;                ///< against ground truth (SE(3) aligned)
 };
 
 /// Runs every requested back-end in turn. Throws only for a bad request (no log, ...).
@@ -45,12 +45,9 @@ std::vector<BackendRun> RunBackends(const BackendRunsRequest& request);
 /// (one line) before rethrowing.
 void RunBackendHere(const BackendRunsRequest& request, const std::string& backend);
 
-/// False with a reason when `backend` is not built into this executable.
-bool BackendAvailable(const std::string& backend, std::string* why);
-
 /// ATE/RPE of a trajectory against a TUM ground truth, into `row` (SE(3) alignment, the
 /// reference interpolated at the estimate's stamps).
-estimation::AteResult EvaluateTrajectory(const std::vector<io::StampedPose>& trajectory,
+evaluation::AteResult EvaluateTrajectory(const std::vector<io::StampedPose>& trajectory,
                                          const std::string& ground_truth, double rpe_delta_m,
                                          report::BackendRow* row);
 

@@ -1,5 +1,5 @@
 // `hylo compare --log LOG [--map MAP --guess G] --config C [--gt GT] --out DIR`: the same log
-// through every estimator back-end (issue 7), each in its own child process so its peak memory
+// through every estimator back-end, each in its own child process so its peak memory
 // is its own, each into DIR/<backend>/. One table (terminal, DIR/comparison.md,
 // DIR/comparison.json): ATE and RPE against GT, the paper's cloud-to-cloud distance to the
 // prior map, ms/scan median and p99, peak memory; plus the top-view and error plots.

@@ -6,18 +6,18 @@
 
 #include "commands.h"
 #include "hylo/io/cloud_io.h"
-#include "hylo/mapping/craft.h"
+#include "hylo/terrain/craft.h"
 
 namespace hylo::cli {
 namespace {
 
 struct CraftArgs {
   std::string in_path, out_path, json_path;
-  mapping::CraftOptions options;
+  terrain::CraftOptions options;
   bool no_normals = false;
 };
 
-io::Json SummaryJson(const CraftArgs& args, const mapping::CraftResult& r) {
+io::Json SummaryJson(const CraftArgs& args, const terrain::CraftResult& r) {
   io::Json j = io::Json::MakeObject();
   j["in"] = args.in_path;
   j["out"] = args.out_path;
@@ -57,7 +57,7 @@ void RunCraft(CraftArgs& args) {
                raw.positions.size(), args.options.voxel_size_m, args.options.mls_search_radius_m,
                args.options.mls_small_radius_m, args.options.mls_support_voxel_m,
                args.options.polynomial_order, args.options.num_threads);
-  mapping::CraftResult result = mapping::CraftMap(raw.positions, args.options);
+  terrain::CraftResult result = terrain::CraftMap(raw.positions, args.options);
   result.num_invalid += raw.dropped_non_finite;
   result.num_input += raw.dropped_non_finite;
   if (!result.ok) throw std::runtime_error(args.in_path + ": " + result.message);

@@ -1,5 +1,5 @@
 // `hylo demo [--out DIR] [--quick]`: the paper's whole pipeline on the embedded simulated
-// substation (issue 9), into DIR/<timestamp>/ with a DIR/latest link:
+// substation, into DIR/<timestamp>/ with a DIR/latest link:
 //   1. simulate sessions A and B (a day apart; B has changed parts of the site);
 //   2. SLAM on A with the IESKF -> the raw prior map (every registered scan);
 //   3. craft it (uniform sampling + MLS), extract the ground (CSF), build the costmap;
@@ -18,11 +18,11 @@
 #include "commands.h"
 #include "demo_report.h"
 #include "demo_setup.h"
-#include "hylo/estimation/trajectory_metrics.h"
+#include "hylo/evaluation/trajectory_metrics.h"
 #include "hylo/report/json_reader.h"
 #include "hylo/report/report.h"
 #include "hylo/run/run_log.h"
-#include "hylo/sim/session_writer.h"
+#include "hylo/sim_io/session_writer.h"
 #include "run_figures.h"
 #include "site_mapping_steps.h"
 
@@ -102,7 +102,7 @@ io::Json Simulate(const sim::SimulationOptions& options, const std::string& dir)
 }
 
 // SLAM on session A; returns its ATE (the alignment places B's truth in A's map frame).
-estimation::AteResult SlamSessionA(const DemoPaths& p, const config::RunConfig& config,
+evaluation::AteResult SlamSessionA(const DemoPaths& p, const config::RunConfig& config,
                                    io::Json* summary) {
   run::RunRequest request;
   request.log = p.bag_a;
@@ -111,7 +111,7 @@ estimation::AteResult SlamSessionA(const DemoPaths& p, const config::RunConfig& 
   request.label = "SLAM A";
   const run::RunResult result = run::RunLog(request);
   report::BackendRow row;
-  const estimation::AteResult ate = EvaluateTrajectory(result.trajectory, p.truth_a, 1.0, &row);
+  const evaluation::AteResult ate = EvaluateTrajectory(result.trajectory, p.truth_a, 1.0, &row);
   *summary = result.summary;
   (*summary)["ate_rmse_m"] = row.ate_rmse_m;
   (*summary)["rpe_rmse_m"] = row.rpe_rmse_m;
@@ -135,16 +135,16 @@ void RunDemo(const DemoArgs& args) {
   s.simulation = Simulate(s.sim, p.sim_dir);
 
   steps.Start("SLAM on session A with the IESKF: the raw prior map");
-  const estimation::AteResult ate_a = SlamSessionA(p, config, &s.slam);
+  const evaluation::AteResult ate_a = SlamSessionA(p, config, &s.slam);
 
   steps.Start("craft the map (uniform sampling + MLS), ground (CSF), traversability costmap");
   fs::create_directories(p.map_dir);
-  s.craft = CraftFile(p.slam_dir + "/map_dense.pcd", p.crafted_map, mapping::CraftOptions());
+  s.craft = CraftFile(p.slam_dir + "/map_dense.pcd", p.crafted_map, terrain::CraftOptions());
   std::printf("  crafted: %zu -> %zu points\n", s.craft.input_points, s.craft.output_points);
-  s.ground = GroundFile(p.crafted_map, p.ground, p.objects, mapping::ClothFilterOptions());
+  s.ground = GroundFile(p.crafted_map, p.ground, p.objects, terrain::ClothFilterOptions());
   std::printf("  ground %zu, objects %zu points\n", s.ground.ground_points, s.ground.object_points);
   s.traversability =
-      TraversabilityFiles(p.ground, p.objects, p.costmap_dir, mapping::TraversabilityOptions());
+      TraversabilityFiles(p.ground, p.objects, p.costmap_dir, terrain::TraversabilityOptions());
   std::printf("  costmap %d x %d cells: %zu free, %zu cost, %zu lethal, %zu unknown\n",
               s.traversability.width, s.traversability.height, s.traversability.cells[1],
               s.traversability.cells[2], s.traversability.cells[3], s.traversability.cells[0]);
@@ -153,7 +153,7 @@ void RunDemo(const DemoArgs& args) {
       "localize session B in the crafted map from a rough guess, hybrid mode, "
       "each back-end");
   s.guess_world_imu = SessionBGuess(p.truth_b, ate_a, s.guess_error);
-  config.map.update_after_s = s.hybrid_after_s;
+  config.pipeline.localization.update_after_s = s.hybrid_after_s;
   config::SaveRunConfig(p.localize_config, config);
   BackendRunsRequest request;
   request.log = p.bag_b;

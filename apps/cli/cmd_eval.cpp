@@ -11,12 +11,12 @@
 #include <stdexcept>
 
 #include "commands.h"
-#include "hylo/estimation/trajectory_metrics.h"
+#include "hylo/common/local_origin.h"
+#include "hylo/evaluation/cloud_distance.h"
+#include "hylo/evaluation/trajectory_metrics.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/trajectory_io.h"
 #include "hylo/mapping/ikd_tree.h"
-#include "hylo/mapping/local_origin.h"
-#include "hylo/registration/cloud_distance.h"
 
 namespace hylo::cli {
 namespace {
@@ -30,7 +30,7 @@ struct TrajectoryArgs {
 
 struct C2cArgs {
   std::string cloud, ref, json;
-  double max_dist_m = registration::CloudDistanceOptions().max_distance_m;
+  double max_dist_m = evaluation::CloudDistanceOptions().max_distance_m;
 };
 
 struct AteArgs : TrajectoryArgs {
@@ -44,7 +44,7 @@ struct RpeArgs : TrajectoryArgs {
 
 int64_t SecondsToNs(double s) { return static_cast<int64_t>(std::llround(s * 1e9)); }
 
-std::vector<estimation::TimedPose> ReadTrajectory(const std::string& path, const std::string& times,
+std::vector<evaluation::TimedPose> ReadTrajectory(const std::string& path, const std::string& times,
                                                   const TrajectoryArgs& args) {
   std::vector<io::StampedPose> poses;
   if (args.format == "tum") {
@@ -56,15 +56,15 @@ std::vector<estimation::TimedPose> ReadTrajectory(const std::string& path, const
     poses = io::ReadKitti(path, timing);
   }
   if (poses.empty()) throw std::runtime_error("'" + path + "' holds no pose");
-  std::vector<estimation::TimedPose> out;
+  std::vector<evaluation::TimedPose> out;
   for (const io::StampedPose& p : poses) out.push_back({p.t_ns, p.T_world_body()});
   return out;
 }
 
-estimation::AssociationOptions ParseAssociation(const TrajectoryArgs& args) {
-  estimation::AssociationOptions options;
-  options.method = args.association == "nearest" ? estimation::Association::kNearest
-                                                 : estimation::Association::kInterpolate;
+evaluation::AssociationOptions ParseAssociation(const TrajectoryArgs& args) {
+  evaluation::AssociationOptions options;
+  options.method = args.association == "nearest" ? evaluation::Association::kNearest
+                                                 : evaluation::Association::kInterpolate;
   options.max_dt_ns = SecondsToNs(args.max_dt_s);
   options.max_gap_ns = SecondsToNs(args.max_gap_s);
   std::string why;
@@ -72,11 +72,11 @@ estimation::AssociationOptions ParseAssociation(const TrajectoryArgs& args) {
   return options;
 }
 
-estimation::Alignment ParseAlignment(const std::string& name) {
-  if (name == "none") return estimation::Alignment::kNone;
-  if (name == "first") return estimation::Alignment::kFirstPose;
-  if (name == "sim3") return estimation::Alignment::kSim3;
-  return estimation::Alignment::kSE3;
+evaluation::Alignment ParseAlignment(const std::string& name) {
+  if (name == "none") return evaluation::Alignment::kNone;
+  if (name == "first") return evaluation::Alignment::kFirstPose;
+  if (name == "sim3") return evaluation::Alignment::kSim3;
+  return evaluation::Alignment::kSE3;
 }
 
 void AddInputs(io::Json* json, const TrajectoryArgs& args) {
@@ -93,13 +93,13 @@ void RunC2c(const C2cArgs& args) {
   const io::CloudFile b = io::ReadCloud(args.ref);
   if (b.positions.empty()) throw std::runtime_error("'" + args.ref + "' holds no point");
   // Both clouds shifted by one origin so that UTM coordinates keep their millimetres in float.
-  const Eigen::Vector3d origin = mapping::ChooseOrigin(b.positions);
+  const Eigen::Vector3d origin = ChooseOrigin(b.positions);
   mapping::IkdTree tree;
-  tree.Build(mapping::ToLocal(b.positions, origin));
-  registration::CloudDistanceOptions options;
+  tree.Build(ToLocal(b.positions, origin));
+  evaluation::CloudDistanceOptions options;
   options.max_distance_m = args.max_dist_m;
-  const registration::CloudDistanceSummary s =
-      registration::CloudToCloudDistance(mapping::ToLocal(a.positions, origin), tree, options);
+  const evaluation::CloudDistanceSummary s =
+      evaluation::CloudToCloudDistance(ToLocal(a.positions, origin), tree, options);
   if (!s.ok) throw std::runtime_error("c2c " + args.cloud + " -> " + args.ref + ": " + s.message);
   std::printf("cloud-to-cloud distance %s -> %s (outliers beyond %.3f m rejected)\n",
               args.cloud.c_str(), args.ref.c_str(), args.max_dist_m);
@@ -154,11 +154,11 @@ void AddErrorFields(const ErrorResult& r, io::Json* json) {
 }
 
 void RunAte(const AteArgs& args) {
-  estimation::AteOptions options;
+  evaluation::AteOptions options;
   options.association = ParseAssociation(args);
   options.alignment = ParseAlignment(args.align);
-  const estimation::AteResult ate =
-      estimation::ComputeAte(ReadTrajectory(args.est, args.est_times, args),
+  const evaluation::AteResult ate =
+      evaluation::ComputeAte(ReadTrajectory(args.est, args.est_times, args),
                              ReadTrajectory(args.gt, args.gt_times, args), options);
   if (!ate.ok) throw std::runtime_error("ate " + args.est + " vs " + args.gt + ": " + ate.message);
   std::printf("ATE %s vs %s: %zu poses (%zu unmatched), alignment %s, scale %.6f, path %.2f m\n",
@@ -182,13 +182,13 @@ void RunAte(const AteArgs& args) {
 }
 
 void RunRpe(const RpeArgs& args) {
-  estimation::RpeOptions options;
+  evaluation::RpeOptions options;
   options.association = ParseAssociation(args);
   options.delta = args.delta;
   options.unit =
-      args.delta_unit == "m" ? estimation::DeltaUnit::kMeters : estimation::DeltaUnit::kFrames;
-  const estimation::RpeResult rpe =
-      estimation::ComputeRpe(ReadTrajectory(args.est, args.est_times, args),
+      args.delta_unit == "m" ? evaluation::DeltaUnit::kMeters : evaluation::DeltaUnit::kFrames;
+  const evaluation::RpeResult rpe =
+      evaluation::ComputeRpe(ReadTrajectory(args.est, args.est_times, args),
                              ReadTrajectory(args.gt, args.gt_times, args), options);
   if (!rpe.ok) throw std::runtime_error("rpe " + args.est + " vs " + args.gt + ": " + rpe.message);
   std::printf("RPE %s vs %s: delta %g %s, %zu pairs over %zu poses\n", args.est.c_str(),

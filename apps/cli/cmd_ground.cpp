@@ -10,30 +10,30 @@
 #include "commands.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/progress.h"
-#include "hylo/mapping/cloth_filter.h"
+#include "hylo/terrain/cloth_filter.h"
 
 namespace hylo::cli {
 namespace {
 
 struct GroundArgs {
   std::string in_path, ground_path, objects_path, json_path;
-  mapping::ClothFilterOptions options;
+  terrain::ClothFilterOptions options;
   bool no_slope_smoothing = false;
   bool vertical_distance = false;
   std::string hole_fill = "mean";  ///< --hole-fill, see HoleFillByName
 };
 
-// CLI names of mapping::ClothHoleFill.
-const std::map<std::string, mapping::ClothHoleFill>& HoleFillByName() {
-  static const std::map<std::string, mapping::ClothHoleFill> names = {
-      {"mean", mapping::ClothHoleFill::kNeighbourMean},
-      {"nearest", mapping::ClothHoleFill::kNearest},
-      {"reference", mapping::ClothHoleFill::kReferenceScanline}};
+// CLI names of terrain::ClothHoleFill.
+const std::map<std::string, terrain::ClothHoleFill>& HoleFillByName() {
+  static const std::map<std::string, terrain::ClothHoleFill> names = {
+      {"mean", terrain::ClothHoleFill::kNeighbourMean},
+      {"nearest", terrain::ClothHoleFill::kNearest},
+      {"reference", terrain::ClothHoleFill::kReferenceScanline}};
   return names;
 }
 
-io::Json SummaryJson(const GroundArgs& args, const mapping::ClothFilterResult& r, double seconds) {
-  const mapping::ClothFilterOptions& o = args.options;
+io::Json SummaryJson(const GroundArgs& args, const terrain::ClothFilterResult& r, double seconds) {
+  const terrain::ClothFilterOptions& o = args.options;
   io::Json j = io::Json::MakeObject();
   j["in"] = args.in_path;
   j["out_ground"] = args.ground_path;
@@ -76,8 +76,8 @@ io::Json SummaryJson(const GroundArgs& args, const mapping::ClothFilterResult& r
 }
 
 // The points of `cloud` labelled `label`, with their attributes.
-io::CloudFile Select(const io::CloudFile& cloud, const mapping::ClothFilterResult& r,
-                     mapping::GroundLabel label) {
+io::CloudFile Select(const io::CloudFile& cloud, const terrain::ClothFilterResult& r,
+                     terrain::GroundLabel label) {
   io::CloudFile out;
   for (std::size_t i = 0; i < cloud.positions.size(); ++i) {
     if (r.labels[i] != label) continue;
@@ -99,15 +99,15 @@ void RunGround(GroundArgs& args) {
   const io::CloudFile cloud = io::ReadCloud(args.in_path);
   auto progress = std::make_unique<io::Progress>(
       "cloth simulation", static_cast<std::size_t>(args.options.max_iterations));
-  const mapping::ClothFilterResult result = mapping::FilterGround(
+  const terrain::ClothFilterResult result = terrain::FilterGround(
       cloud.positions, args.options,
       [&progress](int iteration, int) { progress->Update(static_cast<std::size_t>(iteration)); });
   const double seconds = progress->ElapsedSeconds();
   progress.reset();
   if (!result.ok) throw std::runtime_error(args.in_path + ": " + result.message);
   std::fprintf(stderr, "%s\n", result.message.c_str());
-  io::WriteCloud(args.ground_path, Select(cloud, result, mapping::GroundLabel::kGround));
-  io::WriteCloud(args.objects_path, Select(cloud, result, mapping::GroundLabel::kObject));
+  io::WriteCloud(args.ground_path, Select(cloud, result, terrain::GroundLabel::kGround));
+  io::WriteCloud(args.objects_path, Select(cloud, result, terrain::GroundLabel::kObject));
   std::fprintf(stderr, "wrote %s and %s\n", args.ground_path.c_str(), args.objects_path.c_str());
   io::Json summary = SummaryJson(args, result, seconds);
   summary["points"]["non_finite"] = result.num_invalid + cloud.dropped_non_finite;
@@ -120,7 +120,7 @@ void AddGroundCommand(CLI::App& root) {
   auto* cmd = root.add_subcommand(
       "ground", "Split a cloud into ground and objects with a cloth simulation filter (CSF)");
   static GroundArgs args;
-  mapping::ClothFilterOptions& o = args.options;
+  terrain::ClothFilterOptions& o = args.options;
   cmd->add_option("--in", args.in_path, "cloud (PCD/PLY), may be in UTM coordinates")->required();
   cmd->add_option("--out-ground", args.ground_path, "ground points to write")->required();
   cmd->add_option("--out-objects", args.objects_path, "object points to write")->required();

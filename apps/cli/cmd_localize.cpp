@@ -2,8 +2,8 @@
 // localization in a prior map (Alamanos et al., Sec. III). The first static scans are
 // registered to the map by the ICP initializer from the guess (accepted only under the
 // fitness threshold, else a clear error and no odometry); then the configured back-end tracks
-// against the prior, in hybrid mode extending the map after map.update_after_s. Writes the
-// files of hylo/run/run_log.h, with the paper's cloud-to-cloud metric and every
+// against the prior, in hybrid mode extending the map after localization.update_after_s.
+// Writes the files of hylo/run/run_log.h, with the paper's cloud-to-cloud metric and every
 // initialization/loss/relocalization event in summary.json.
 
 #include <cmath>
@@ -29,18 +29,19 @@ void RunLocalize(const LocalizeArgs& args) {
   request.prior_map = args.map;
   request.config = config::LoadRunConfig(args.config);
   if (!std::isnan(args.update_after_s)) {
-    request.config.map.update_after_s = args.update_after_s;
+    request.config.pipeline.localization.update_after_s = args.update_after_s;
     std::string why;
-    if (!request.config.map.IsValid(&why)) throw std::invalid_argument("--update-after: " + why);
+    if (!request.config.pipeline.localization.IsValid(&why)) {
+      throw std::invalid_argument("--update-after: " + why);
+    }
   }
-  const std::string guess =
-      args.guess.empty() ? request.config.localization.initial_guess : args.guess;
+  const std::string guess = args.guess.empty() ? request.config.initial_guess : args.guess;
   if (guess.empty()) {
     throw std::invalid_argument("no initial guess: pass --guess \"x y z roll pitch yaw\" or set "
                                 "localization.initial_guess in " + args.config);
   }
   request.guess_world_imu = registration::ParsePoseGuess(guess);
-  request.config.localization.initial_guess = guess;  // saved with the effective config
+  request.config.initial_guess = guess;  // saved with the effective config
   request.c2c_max_distance_m = args.c2c_max_distance_m;
   request.out_dir = args.out;
   request.label = "localize";

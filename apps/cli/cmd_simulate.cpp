@@ -9,7 +9,7 @@
 
 #include "commands.h"
 #include "hylo/io/progress.h"
-#include "hylo/sim/session_writer.h"
+#include "hylo/sim_io/session_writer.h"
 
 namespace hylo::cli {
 namespace {

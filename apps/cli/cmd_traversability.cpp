@@ -9,19 +9,19 @@
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/costmap_io.h"
 #include "hylo/io/progress.h"
-#include "hylo/mapping/traversability.h"
+#include "hylo/terrain/traversability.h"
 
 namespace hylo::cli {
 namespace {
 
 struct TraversabilityArgs {
   std::string ground_path, objects_path, out_dir, json_path;
-  mapping::TraversabilityOptions options;
+  terrain::TraversabilityOptions options;
   bool no_cell_grade = false;
   bool estimate_edge_cells = false;
 };
 
-io::Json OptionsJson(const mapping::TraversabilityOptions& o) {
+io::Json OptionsJson(const terrain::TraversabilityOptions& o) {
   io::Json j = io::Json::MakeObject();
   j["resolution_m"] = o.resolution_m;
   j["max_hole_size_m"] = o.elevation.max_hole_size_m;
@@ -40,9 +40,9 @@ io::Json OptionsJson(const mapping::TraversabilityOptions& o) {
   return j;
 }
 
-io::Json SummaryJson(const TraversabilityArgs& args, const mapping::TraversabilityMap& map) {
-  const mapping::GridGeometry& g = map.grid.geometry();
-  const mapping::TraversabilitySummary& s = map.summary;
+io::Json SummaryJson(const TraversabilityArgs& args, const terrain::TraversabilityMap& map) {
+  const terrain::GridGeometry& g = map.grid.geometry();
+  const terrain::TraversabilitySummary& s = map.summary;
   io::Json j = io::Json::MakeObject();
   j["ground"] = args.ground_path;
   j["objects"] = args.objects_path;
@@ -54,8 +54,8 @@ io::Json SummaryJson(const TraversabilityArgs& args, const mapping::Traversabili
   j["width"] = g.width;
   j["height"] = g.height;
   io::Json& cells = j["cells"];
-  for (int c = 0; c < mapping::kNumCellClasses; ++c) {
-    cells[mapping::CellClassName(static_cast<mapping::CellClass>(c))] = s.cells_per_class[c];
+  for (int c = 0; c < terrain::kNumCellClasses; ++c) {
+    cells[terrain::CellClassName(static_cast<terrain::CellClass>(c))] = s.cells_per_class[c];
   }
   cells["measured"] = s.elevation.measured_cells;
   cells["hole_filled"] = s.elevation.filled_cells;
@@ -100,7 +100,7 @@ void Run(const TraversabilityArgs& args) {
   const auto objects = args.objects_path.empty() ? std::vector<Eigen::Vector3d>{}
                                                  : ReadPositions(args.objects_path, "object");
   io::Progress progress("traversability", 5);
-  const mapping::TraversabilityMap map = mapping::ComputeTraversability(
+  const terrain::TraversabilityMap map = terrain::ComputeTraversability(
       ground, objects, args.options,
       [&](const std::string&, int index, int) { progress.Update(index); });
   progress.Update(5);
@@ -128,7 +128,7 @@ void AddTraversabilityCommand(CLI::App& root) {
   auto* cmd = root.add_subcommand(
       "traversability", "Ground (+ object) cloud -> grid map layers -> traversability costmap");
   static TraversabilityArgs args;
-  mapping::CostOptions& cost = args.options.cost;
+  terrain::CostOptions& cost = args.options.cost;
   cmd->add_option("--ground", args.ground_path, "ground cloud (PCD/PLY)")->required();
   cmd->add_option("--objects", args.objects_path, "object (non-ground) cloud: obstacles");
   cmd->add_option("--out", args.out_dir, "output folder")->required();

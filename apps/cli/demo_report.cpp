@@ -4,7 +4,7 @@
 
 #include "hylo/report/json_reader.h"
 #include "hylo/report/report.h"
-#include "hylo/sim/session_writer.h"
+#include "hylo/sim_io/session_writer.h"
 
 namespace hylo::cli {
 namespace {
@@ -98,9 +98,9 @@ std::vector<std::pair<std::string, std::string>> Parameters(const DemoSummary& s
           {"IMU", Fixed(s.sim.imu.rate_hz, 0) + " Hz"},
           {"initial guess error", Fixed(s.guess_error.translation_m, 2) + " m, " +
                                       Fixed(s.guess_error.yaw_deg, 1) + " deg yaw"},
-          {"hybrid mode (map.update_after_s)", Fixed(s.hybrid_after_s, 1) + " s"},
-          {"craft", "defaults of mapping::CraftOptions"},
-          {"ground", "defaults of mapping::ClothFilterOptions"},
+          {"hybrid mode (localization.update_after_s)", Fixed(s.hybrid_after_s, 1) + " s"},
+          {"craft", "defaults of terrain::CraftOptions"},
+          {"ground", "defaults of terrain::ClothFilterOptions"},
           {"costmap resolution", Fixed(s.traversability.resolution_m, 2) + " m"}};
 }
 

@@ -37,7 +37,7 @@ struct DemoSummary {
   GroundStep ground;
   TraversabilityStep traversability;
   GuessError guess_error;       ///< how far the initial guess of B is from the truth
-  double hybrid_after_s = 5.0;  ///< map.update_after_s of the localization runs, s
+  double hybrid_after_s = 5.0;  ///< localization.update_after_s of the localization runs, s
   Eigen::Isometry3d guess_world_imu = Eigen::Isometry3d::Identity();  ///< the guess used
   std::vector<double> prior_frame_error_m;  ///< per run: PriorFrameErrorRmse, m (NaN: none)
   double elapsed_s = 0.0;                   ///< wall time up to the report, s

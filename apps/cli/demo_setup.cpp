@@ -10,30 +10,30 @@ namespace hylo::cli {
 
 config::RunConfig ConfigForSimulation(const sim::SimulationOptions& sim) {
   config::RunConfig c;
-  c.backend = "ieskf";
+  estimation::OdometryPipelineOptions& p = c.pipeline;
+  p.estimator.backend = estimation::Estimator::Backend::kIeskf;
   c.lidar.topic = "/points";
   c.lidar.time_convention = io::PointTimeConvention::kVelodyne;
-  c.lidar.min_range_m = sim.lidar.min_range_m;
-  c.lidar.max_range_m = sim.lidar.max_range_m;
-  c.lidar.scan_period_s = 1.0 / sim.lidar.rate_hz;
+  p.preprocess.min_range_m = sim.lidar.min_range_m;
+  p.preprocess.max_range_m = sim.lidar.max_range_m;
   c.imu.topic = "/imu";
-  c.imu.rate_hz = sim.imu.rate_hz;
-  c.imu.gravity_mps2 = sim.imu.gravity_mps2;
-  c.imu.noise.gyro_noise_density = sim.imu.gyro_noise_density;
-  c.imu.noise.accel_noise_density = sim.imu.accel_noise_density;
-  c.imu.noise.gyro_bias_random_walk = sim.imu.gyro_bias_random_walk;
-  c.imu.noise.accel_bias_random_walk = sim.imu.accel_bias_random_walk;
+  p.imu.rate_hz = sim.imu.rate_hz;
+  p.imu.gravity_mps2 = sim.imu.gravity_mps2;
+  p.imu.noise.gyro_noise_density = sim.imu.gyro_noise_density;
+  p.imu.noise.accel_noise_density = sim.imu.accel_noise_density;
+  p.imu.noise.gyro_bias_random_walk = sim.imu.gyro_bias_random_walk;
+  p.imu.noise.accel_bias_random_walk = sim.imu.accel_bias_random_walk;
   const Eigen::Isometry3d& T = sim.lidar.T_imu_lidar;
   // R = Rz(yaw) Ry(pitch) Rx(roll): Eigen's Euler angles about z, y, x give yaw, pitch, roll.
   const Eigen::Vector3d ypr = T.linear().eulerAngles(2, 1, 0) * 180.0 / M_PI;
   c.T_imu_lidar.translation_m = T.translation();
   c.T_imu_lidar.rotation_rpy_deg = Eigen::Vector3d(ypr.z(), ypr.y(), ypr.x());
-  c.preprocess.scan_voxel_m = 0.5;
-  c.map.voxel_size_m = 0.5;
+  p.preprocess.scan_voxel_m = 0.5;
+  p.map.voxel_size_m = 0.5;
   return c;
 }
 
-Eigen::Isometry3d SessionBGuess(const std::string& truth_b_path, const estimation::AteResult& ate_a,
+Eigen::Isometry3d SessionBGuess(const std::string& truth_b_path, const evaluation::AteResult& ate_a,
                                 const GuessError& error) {
   if (!ate_a.ok)
     throw std::runtime_error("session A's alignment to the truth failed: " + ate_a.message);
@@ -52,17 +52,17 @@ Eigen::Isometry3d SessionBGuess(const std::string& truth_b_path, const estimatio
 }
 
 double PriorFrameErrorRmse(const std::vector<io::StampedPose>& trajectory_map,
-                           const std::string& truth_b_path, const estimation::AteResult& ate_a) {
-  std::vector<estimation::TimedPose> estimate, truth;
+                           const std::string& truth_b_path, const evaluation::AteResult& ate_a) {
+  std::vector<evaluation::TimedPose> estimate, truth;
   for (const io::StampedPose& p : trajectory_map) {
     estimate.push_back({p.t_ns, ate_a.T_reference_estimate * p.T_world_body()});
   }
   for (const io::StampedPose& p : io::ReadTum(truth_b_path)) {
     truth.push_back({p.t_ns, p.T_world_body()});
   }
-  estimation::AteOptions options;
-  options.alignment = estimation::Alignment::kNone;
-  const estimation::AteResult ate = estimation::ComputeAte(estimate, truth, options);
+  evaluation::AteOptions options;
+  options.alignment = evaluation::Alignment::kNone;
+  const evaluation::AteResult ate = evaluation::ComputeAte(estimate, truth, options);
   return ate.ok ? ate.rmse_m : std::nan("");
 }
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "hylo/config/run_config.h"
-#include "hylo/estimation/trajectory_metrics.h"
+#include "hylo/evaluation/trajectory_metrics.h"
 #include "hylo/io/trajectory_io.h"
 #include "hylo/sim/simulator.h"
 
@@ -27,7 +27,7 @@ struct GuessError {
 /// `truth_b_path`) moved into the prior map's frame with the inverse of session A's SE(3)
 /// alignment `ate_a` (map A -> simulator), then offset by `error` (translation along
 /// 36.87 deg, i.e. (0.8, 0.6) for 1 m, and yaw).
-Eigen::Isometry3d SessionBGuess(const std::string& truth_b_path, const estimation::AteResult& ate_a,
+Eigen::Isometry3d SessionBGuess(const std::string& truth_b_path, const evaluation::AteResult& ate_a,
                                 const GuessError& error);
 
 /// Position error of session B's estimate (map frame) against B's truth without fitting a new
@@ -35,7 +35,7 @@ Eigen::Isometry3d SessionBGuess(const std::string& truth_b_path, const estimatio
 /// `ate_a`, so an offset between B's poses and the map the robot was given is not aligned
 /// away (the SE(3)-aligned ATE of the table would hide it). RMSE, m; NaN when not computable.
 double PriorFrameErrorRmse(const std::vector<io::StampedPose>& trajectory_map,
-                           const std::string& truth_b_path, const estimation::AteResult& ate_a);
+                           const std::string& truth_b_path, const evaluation::AteResult& ate_a);
 
 /// A pose as the 16 numbers of registration::ParsePoseGuess (row-major 4×4), exact to 1e-12.
 std::string PoseAsGuessText(const Eigen::Isometry3d& T);

@@ -14,8 +14,8 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 }
 
 // The points of `cloud` labelled `label`, with their attributes.
-io::CloudFile Select(const io::CloudFile& cloud, const std::vector<mapping::GroundLabel>& labels,
-                     mapping::GroundLabel label) {
+io::CloudFile Select(const io::CloudFile& cloud, const std::vector<terrain::GroundLabel>& labels,
+                     terrain::GroundLabel label) {
   io::CloudFile out;
   for (std::size_t i = 0; i < cloud.positions.size(); ++i) {
     if (labels[i] != label) continue;
@@ -38,9 +38,9 @@ io::Json CraftStep::ToJson() const {
 }
 
 CraftStep CraftFile(const std::string& in_path, const std::string& out_path,
-                    const mapping::CraftOptions& options) {
+                    const terrain::CraftOptions& options) {
   const io::CloudFile raw = io::ReadCloud(in_path);
-  mapping::CraftResult result = mapping::CraftMap(raw.positions, options);
+  terrain::CraftResult result = terrain::CraftMap(raw.positions, options);
   if (!result.ok) throw std::runtime_error(in_path + ": " + result.message);
   CraftStep step;
   step.input_points = raw.positions.size();
@@ -64,13 +64,13 @@ io::Json GroundStep::ToJson() const {
 }
 
 GroundStep GroundFile(const std::string& in_path, const std::string& ground_path,
-                      const std::string& objects_path, const mapping::ClothFilterOptions& options) {
+                      const std::string& objects_path, const terrain::ClothFilterOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const io::CloudFile cloud = io::ReadCloud(in_path);
-  const mapping::ClothFilterResult r = mapping::FilterGround(cloud.positions, options);
+  const terrain::ClothFilterResult r = terrain::FilterGround(cloud.positions, options);
   if (!r.ok) throw std::runtime_error(in_path + ": " + r.message);
-  io::WriteCloud(ground_path, Select(cloud, r.labels, mapping::GroundLabel::kGround));
-  io::WriteCloud(objects_path, Select(cloud, r.labels, mapping::GroundLabel::kObject));
+  io::WriteCloud(ground_path, Select(cloud, r.labels, terrain::GroundLabel::kGround));
+  io::WriteCloud(objects_path, Select(cloud, r.labels, terrain::GroundLabel::kObject));
   GroundStep step;
   step.ground_points = r.num_ground;
   step.object_points = r.num_objects;
@@ -85,8 +85,8 @@ io::Json TraversabilityStep::ToJson() const {
   j["resolution_m"] = resolution_m;
   j["width"] = width;
   j["height"] = height;
-  for (int c = 0; c < mapping::kNumCellClasses; ++c) {
-    j["cells"][mapping::CellClassName(static_cast<mapping::CellClass>(c))] = cells[c];
+  for (int c = 0; c < terrain::kNumCellClasses; ++c) {
+    j["cells"][terrain::CellClassName(static_cast<terrain::CellClass>(c))] = cells[c];
   }
   j["slope_deg"]["median"] = slope.median_deg;
   j["slope_deg"]["p95"] = slope.p95_deg;
@@ -97,13 +97,13 @@ io::Json TraversabilityStep::ToJson() const {
 
 TraversabilityStep TraversabilityFiles(const std::string& ground_path,
                                        const std::string& objects_path, const std::string& out_dir,
-                                       const mapping::TraversabilityOptions& options) {
+                                       const terrain::TraversabilityOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<Eigen::Vector3d> ground = io::ReadCloud(ground_path).positions;
   if (ground.empty()) throw std::runtime_error(ground_path + ": the ground cloud is empty");
   const std::vector<Eigen::Vector3d> objects =
       objects_path.empty() ? std::vector<Eigen::Vector3d>{} : io::ReadCloud(objects_path).positions;
-  const mapping::TraversabilityMap map = mapping::ComputeTraversability(ground, objects, options);
+  const terrain::TraversabilityMap map = terrain::ComputeTraversability(ground, objects, options);
   TraversabilityStep step;
   step.files = io::WriteTraversabilityFiles(out_dir, map);
   step.cells = map.summary.cells_per_class;

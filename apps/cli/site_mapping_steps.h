@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "hylo/io/json.h"
-#include "hylo/mapping/cloth_filter.h"
-#include "hylo/mapping/craft.h"
-#include "hylo/mapping/traversability.h"
+#include "hylo/terrain/cloth_filter.h"
+#include "hylo/terrain/craft.h"
+#include "hylo/terrain/traversability.h"
 
 namespace hylo::cli {
 
@@ -24,7 +24,7 @@ struct CraftStep {
 };
 /// `in_path` (raw map) -> `out_path` (crafted map with normals).
 CraftStep CraftFile(const std::string& in_path, const std::string& out_path,
-                    const mapping::CraftOptions& options);
+                    const terrain::CraftOptions& options);
 
 struct GroundStep {
   std::size_t ground_points = 0, object_points = 0;
@@ -35,13 +35,13 @@ struct GroundStep {
 };
 /// `in_path` -> ground and object clouds (every attribute of the input kept).
 GroundStep GroundFile(const std::string& in_path, const std::string& ground_path,
-                      const std::string& objects_path, const mapping::ClothFilterOptions& options);
+                      const std::string& objects_path, const terrain::ClothFilterOptions& options);
 
 struct TraversabilityStep {
-  std::array<std::size_t, mapping::kNumCellClasses> cells{};  ///< per mapping::CellClass
+  std::array<std::size_t, terrain::kNumCellClasses> cells{};  ///< per terrain::CellClass
   double resolution_m = 0.0;
   int width = 0, height = 0;  ///< grid size, cells
-  mapping::SlopeStats slope;
+  terrain::SlopeStats slope;
   std::vector<std::string> files;  ///< written: costmap.yaml/.pgm/.png, layers/*.asc
   double seconds = 0.0;
   io::Json ToJson() const;
@@ -49,6 +49,6 @@ struct TraversabilityStep {
 /// Ground (+ objects) clouds -> grid map layers and costmap files in `out_dir`.
 TraversabilityStep TraversabilityFiles(const std::string& ground_path,
                                        const std::string& objects_path, const std::string& out_dir,
-                                       const mapping::TraversabilityOptions& options);
+                                       const terrain::TraversabilityOptions& options);
 
 }  // namespace hylo::cli

@@ -29,17 +29,6 @@ void GrowGently(std::vector<T>* array) {
 }
 }  // namespace
 
-Eigen::Matrix<int64_t, 3, 1> VoxelOf(const Eigen::Vector3f& point, float voxel_size_m) {
-  const Eigen::Vector3f scaled = point * (1.f / voxel_size_m);
-  return {static_cast<int64_t>(std::floor(scaled.x())),
-          static_cast<int64_t>(std::floor(scaled.y())),
-          static_cast<int64_t>(std::floor(scaled.z()))};
-}
-
-Eigen::Vector3f VoxelCentre(const Eigen::Matrix<int64_t, 3, 1>& voxel, float voxel_size_m) {
-  return (voxel.cast<float>() + Eigen::Vector3f::Constant(0.5f)) * voxel_size_m;
-}
-
 bool IkdTree::Options::IsValid(std::string* why) const {
   std::ostringstream os;
   if (!(alpha_balance > 0.5f && alpha_balance < 1.f)) {
@@ -65,7 +54,7 @@ IkdTree::IkdTree(Options options) : options_(options) {
   Build({});
 }
 
-void IkdTree::Build(const registration::PointCloud& points) {
+void IkdTree::Build(const PointCloud& points) {
   nodes_.clear();
   buckets_.clear();
   free_nodes_.clear();
@@ -129,8 +118,7 @@ void IkdTree::FreeSubtree(int node) {
 }
 
 // Median split on the axis of largest extent (a balanced tree: the paper's Build).
-void IkdTree::BuildSubtree(int node, registration::PointCloud::iterator begin,
-                           registration::PointCloud::iterator end) {
+void IkdTree::BuildSubtree(int node, PointCloud::iterator begin, PointCloud::iterator end) {
   const std::ptrdiff_t n = end - begin;
   if (n <= options_.leaf_size) {
     MakeLeaf(node, begin, end);
@@ -161,8 +149,7 @@ void IkdTree::BuildSubtree(int node, registration::PointCloud::iterator begin,
   PullUp(node);
 }
 
-void IkdTree::MakeLeaf(int node, registration::PointCloud::const_iterator begin,
-                       registration::PointCloud::const_iterator end) {
+void IkdTree::MakeLeaf(int node, PointCloud::const_iterator begin, PointCloud::const_iterator end) {
   HYLO_CHECK(end - begin <= kBucketCapacity, "a leaf holds at most kBucketCapacity points");
   const int bucket_index = NewBucket();
   Bucket& bucket = buckets_[bucket_index];
@@ -227,7 +214,7 @@ void IkdTree::PushDown(int node) {
   self.tree_deleted = 0;
 }
 
-void IkdTree::CollectValid(int node, registration::PointCloud* points) const {
+void IkdTree::CollectValid(int node, PointCloud* points) const {
   const Node& self = nodes_[node];
   if (self.invalid == self.size) return;
   if (!self.IsLeaf()) {
@@ -241,8 +228,8 @@ void IkdTree::CollectValid(int node, registration::PointCloud* points) const {
   }
 }
 
-registration::PointCloud IkdTree::Flatten() const {
-  registration::PointCloud points;
+PointCloud IkdTree::Flatten() const {
+  PointCloud points;
   points.reserve(Size());
   CollectValid(root_, &points);
   return points;

@@ -120,12 +120,12 @@ void IkdTree::RadiusIn(int node, const Eigen::Vector3f& query, float radius_d2,
   }
 }
 
-void IkdTree::BoxSearch(const Box3f& box, registration::PointCloud* points) const {
+void IkdTree::BoxSearch(const Box3f& box, PointCloud* points) const {
   points->clear();
   BoxSearchIn(root_, box, points);
 }
 
-void IkdTree::BoxSearchIn(int node, const Box3f& box, registration::PointCloud* points) const {
+void IkdTree::BoxSearchIn(int node, const Box3f& box, PointCloud* points) const {
   const Node& self = nodes_[node];
   if (self.invalid == self.size) return;
   bool inside = true;

@@ -36,7 +36,7 @@ bool Contains(const Box3f& box, const Eigen::Vector3f& p) {
 }
 }  // namespace
 
-IkdTree::InsertSummary IkdTree::Insert(const registration::PointCloud& points, float voxel_size_m) {
+IkdTree::InsertSummary IkdTree::Insert(const PointCloud& points, float voxel_size_m) {
   InsertSummary summary;
   if (voxel_size_m > 0.f) {
     if (voxel_size_m != cache_voxel_m_) ResetVoxelCache(voxel_size_m);
@@ -177,7 +177,7 @@ void IkdTree::SplitLeaf(int node, const Eigen::Vector3f& point) {
   BuildSubtree(node, scratch_points_.begin(), scratch_points_.end());
 }
 
-std::size_t IkdTree::Delete(const registration::PointCloud& points) {
+std::size_t IkdTree::Delete(const PointCloud& points) {
   std::size_t deleted = 0;
   for (const Eigen::Vector3f& p : points) {
     if (!p.allFinite()) continue;
@@ -195,7 +195,7 @@ std::size_t IkdTree::DeleteBox(const Box3f& box) {
   if (!box.min.allFinite() && !box.max.allFinite()) return 0;
   if ((box.min.array() > box.max.array()).any()) return 0;
   if (occupancy_.empty()) return DeleteInBox(root_, box, nullptr, 0.f);  // no voxel records
-  registration::PointCloud inside;  // the voxel records must know which points go
+  PointCloud inside;  // the voxel records must know which points go
   BoxSearchIn(root_, box, &inside);
   const std::size_t deleted = DeleteInBox(root_, box, nullptr, 0.f);
   for (const Eigen::Vector3f& p : inside) {

@@ -2,12 +2,12 @@
 // centre) and the voxel cache that answers it without a tree search.
 //
 // Why a cache: a box search per inserted point was the largest cost of `hylo map` (37 % of
-// its samples, issue 5). Once a place is mapped almost every insert lands in a voxel holding
+// its samples in a profile). Once a place is mapped almost every insert lands in a voxel holding
 // exactly one point, and then the decision needs only that point. A complete index of every
 // occupied voxel paid that back in time but cost ~32 B per map point (81.6 B/point in all,
-// over issue 4's 64). A scan revisits mostly the voxels of recent scans, so a bounded cache
-// of recently used voxels answers most inserts: 4-way set-associative, one 64-byte line per
-// set, least recently used evicted, about one voxel per two map points (<= 10 B/point) and
+// over the 64 B/point memory target). A scan revisits mostly the voxels of recent scans, so a
+// bounded cache of recently used voxels answers most inserts: 4-way set-associative, one 64-byte
+// line per set, least recently used evicted, about one voxel per two map points (<= 10 B/point) and
 // at most Options::voxel_cache_max in all (1 MiB by default: 2 B/point at 500k points). A
 // miss is decided by one byte per two or more map points, valid points counted per hash of
 // their voxel: a zero proves a new voxel empty; otherwise (an evicted voxel, one with several
@@ -23,7 +23,7 @@
 // Measured (hylo_ikd_tree_benchmark, workload 3 at ~500k points): 78 % of inserts answered by
 // the cache, 13 % proven empty, 9 % searched. Where a scan sees the whole map each time (a
 // small site, simulator session A) a cache of half the map thrashes and about half of the
-// inserts are searched: the price of staying within issue 4's memory bound.
+// inserts are searched: the price of staying within the memory target.
 
 #include <algorithm>
 #include <array>
@@ -138,7 +138,7 @@ void IkdTree::RecountOccupancy() {
   std::size_t size = 1024;
   while (size < 2 * Size()) size *= 2;
   occupancy_.assign(size, 0);
-  registration::PointCloud points;
+  PointCloud points;
   CollectValid(root_, &points);
   for (const Eigen::Vector3f& p : points) CountPoint(p, +1);
 }
@@ -251,7 +251,7 @@ void IkdTree::Forget(const Eigen::Vector3f& point) {
 // The cache against a count of the valid points (for CheckInvariants).
 bool IkdTree::CheckVoxelIndex(std::string* why) const {
   if (cache_sets_.empty() && occupancy_.empty()) return true;
-  registration::PointCloud points;
+  PointCloud points;
   if (root_ >= 0) CollectValid(root_, &points);
   std::map<std::array<int64_t, 3>, std::pair<int32_t, Eigen::Vector3f>> truth;
   for (const Eigen::Vector3f& p : points) {

@@ -30,7 +30,7 @@ MapManager::MapManager(const MapManagerOptions& options) : options_(options) {
   if (!options_.IsValid(&why)) throw InternalError("invalid options: " + why);
 }
 
-void MapManager::SetPrior(const registration::PointCloud& points_map) {
+void MapManager::SetPrior(const PointCloud& points_map) {
   prior_ = std::make_unique<IkdTree>();
   prior_->Build(points_map);
 }
@@ -64,7 +64,7 @@ void MapManager::UpdateWindow(const Eigen::Vector3f& sensor) {
   }
 }
 
-IkdTree::InsertSummary MapManager::AddScan(const registration::PointCloud& points_map,
+IkdTree::InsertSummary MapManager::AddScan(const PointCloud& points_map,
                                            const Eigen::Vector3f& sensor_position_map) {
   if (options_.window_size_m > 0.0) UpdateWindow(sensor_position_map);
   const IkdTree::InsertSummary summary =
@@ -92,10 +92,9 @@ std::size_t MapManager::prior_size() const { return prior_ == nullptr ? 0 : prio
 
 std::size_t MapManager::Size() const { return run_.Size() + prior_size(); }
 
-registration::PointCloud MapManager::Flatten() const {
-  registration::PointCloud points = prior_ == nullptr ? registration::PointCloud{}
-                                                      : prior_->Flatten();
-  const registration::PointCloud run = run_.Flatten();
+PointCloud MapManager::Flatten() const {
+  PointCloud points = prior_ == nullptr ? PointCloud{} : prior_->Flatten();
+  const PointCloud run = run_.Flatten();
   points.insert(points.end(), run.begin(), run.end());
   return points;
 }

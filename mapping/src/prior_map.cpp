@@ -5,7 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "hylo/mapping/local_origin.h"
+#include "hylo/common/local_origin.h"
 #include "hylo/registration/voxel_filter.h"
 
 namespace hylo::mapping {

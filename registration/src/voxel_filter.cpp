@@ -8,13 +8,14 @@
 #include <string>
 
 #include "hylo/common/check.h"
+#include "hylo/common/voxel_key.h"
 
 namespace hylo::registration {
 namespace {
 
 // Open-addressing table from voxel key to the kept point of that voxel. It replaces a
 // std::unordered_map, whose one heap node per voxel made this the third-largest cost of a
-// scan (perf, issue 5): here the slots are one flat array reused from call to call.
+// scan (a profile of `hylo map`): here the slots are one flat array reused from call to call.
 class VoxelTable {
  public:
   struct Slot {
@@ -86,18 +87,13 @@ class VoxelTable {
   std::size_t used_ = 0;
 };
 
-// std::floor for a value in int range, without the library call that x86-64 without SSE4.1
-// makes of it (three per point were a visible share of this function's time).
-int32_t FloorToInt(float x) {
-  const int32_t truncated = static_cast<int32_t>(x);
-  return truncated - (x < static_cast<float>(truncated) ? 1 : 0);
-}
-
-void VoxelKeyOf(const Eigen::Vector3f& point, float inverse_voxel, int32_t* key) {
-  const Eigen::Vector3f scaled = point * inverse_voxel;
-  key[0] = FloorToInt(scaled.x());
-  key[1] = FloorToInt(scaled.y());
-  key[2] = FloorToInt(scaled.z());
+// The voxel table keys voxels by int32 indices (half the probe traffic of int64 keys); callers
+// keep points within that range (see UniformSampler::Add).
+void VoxelKeyOf(const Eigen::Vector3f& point, float voxel_size_m, int32_t* key) {
+  const VoxelKey voxel = VoxelOf(point, voxel_size_m);
+  key[0] = static_cast<int32_t>(voxel.x());
+  key[1] = static_cast<int32_t>(voxel.y());
+  key[2] = static_cast<int32_t>(voxel.z());
 }
 
 enum class Offer { kNewVoxel, kReplaces, kRejected };
@@ -105,15 +101,11 @@ enum class Offer { kNewVoxel, kReplaces, kRejected };
 // Offers `point` to its voxel in `table`. A new voxel records `next_position` (the caller
 // appends the point there); a point nearer the centre than the voxel's takes its place
 // (returned through `replaced_position`); otherwise the voxel keeps its point.
-Offer OfferPoint(const Eigen::Vector3f& point, float voxel_size_m, float inverse_voxel,
-                 uint32_t next_position, VoxelTable* table, uint32_t* replaced_position) {
+Offer OfferPoint(const Eigen::Vector3f& point, float voxel_size_m, uint32_t next_position,
+                 VoxelTable* table, uint32_t* replaced_position) {
   int32_t key[3];
-  VoxelKeyOf(point, inverse_voxel, key);
-  const Eigen::Vector3f centre =
-      (Eigen::Vector3f(static_cast<float>(key[0]), static_cast<float>(key[1]),
-                       static_cast<float>(key[2])) +
-       Eigen::Vector3f::Constant(0.5f)) *
-      voxel_size_m;
+  VoxelKeyOf(point, voxel_size_m, key);
+  const Eigen::Vector3f centre = VoxelCentre(VoxelKey(key[0], key[1], key[2]), voxel_size_m);
   const float d2 = (point - centre).squaredNorm();
   VoxelTable::Slot* slot = table->Find(key);
   if (slot->kept == VoxelTable::kEmpty) {
@@ -142,11 +134,10 @@ std::vector<std::size_t> UniformSampleIndices(const PointCloud& points, float vo
   // clear. Map-sized clouds start at 1M voxels (40 MiB) and grow only if they need to.
   constexpr std::size_t kMaxInitialVoxels = std::size_t{1} << 20;
   table.Reset(std::min(points.size() / 2, kMaxInitialVoxels) + 16);
-  const float inverse_voxel = 1.f / voxel_size_m;
   for (std::size_t i = 0; i < points.size(); ++i) {
     uint32_t position = 0;
-    switch (OfferPoint(points[i], voxel_size_m, inverse_voxel, static_cast<uint32_t>(kept.size()),
-                       &table, &position)) {
+    switch (OfferPoint(points[i], voxel_size_m, static_cast<uint32_t>(kept.size()), &table,
+                       &position)) {
       case Offer::kNewVoxel: kept.push_back(i); break;
       case Offer::kReplaces: kept[position] = i; break;
       case Offer::kRejected: break;
@@ -183,7 +174,7 @@ std::size_t UniformSampler::Add(const PointCloud& points) {
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (i + kPrefetchAhead < points.size() && usable(points[i + kPrefetchAhead])) {
       int32_t key[3];
-      VoxelKeyOf(points[i + kPrefetchAhead], inverse_voxel, key);
+      VoxelKeyOf(points[i + kPrefetchAhead], voxel_size_m_, key);
       table_->Prefetch(key);
     }
     const Eigen::Vector3f& p = points[i];
@@ -192,8 +183,8 @@ std::size_t UniformSampler::Add(const PointCloud& points) {
       continue;
     }
     uint32_t position = 0;
-    switch (OfferPoint(p, voxel_size_m_, inverse_voxel, static_cast<uint32_t>(points_.size()),
-                       table_.get(), &position)) {
+    switch (OfferPoint(p, voxel_size_m_, static_cast<uint32_t>(points_.size()), table_.get(),
+                       &position)) {
       case Offer::kNewVoxel: points_.push_back(p); break;
       case Offer::kReplaces: points_[position] = p; break;
       case Offer::kRejected: break;

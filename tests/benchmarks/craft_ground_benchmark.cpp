@@ -9,13 +9,13 @@
 #include <random>
 #include <vector>
 
-#include "hylo/mapping/cloth_filter.h"
-#include "hylo/mapping/craft.h"
+#include "hylo/terrain/cloth_filter.h"
+#include "hylo/terrain/craft.h"
 
 namespace {
 
-using hylo::mapping::ClothFilterOptions;
-using hylo::mapping::CraftOptions;
+using hylo::terrain::ClothFilterOptions;
+using hylo::terrain::CraftOptions;
 
 double Terrain(double x, double y) { return 0.3 * std::sin(0.2 * x) + 0.02 * y; }
 
@@ -77,8 +77,8 @@ int main(int argc, char** argv) {
   std::printf("  thickness (RMS to the true surface) before: %.4f m\n", RmsToTerrain(raw));
   for (const int threads : {1, 2}) {
     craft.num_threads = threads;
-    hylo::mapping::CraftResult result;
-    const double total = Seconds([&] { result = hylo::mapping::CraftMap(raw, craft); });
+    hylo::terrain::CraftResult result;
+    const double total = Seconds([&] { result = hylo::terrain::CraftMap(raw, craft); });
     std::printf(
         "  threads %d: total %.2f s (sampling %.2f s, MLS %.2f s), %zu -> %zu points, "
         "thickness after %.4f m\n",
@@ -88,17 +88,17 @@ int main(int argc, char** argv) {
   // Ground: 25 points/m^2 (airborne-like density), defaults (GR 1, RI 3, ST on).
   const double ground_size_m = std::sqrt(count / 25.0);
   const std::vector<Eigen::Vector3d> site = SiteWithBuildings(count, ground_size_m, 2);
-  hylo::mapping::ClothFilterResult ground;
+  hylo::terrain::ClothFilterResult ground;
   const double ground_s =
-      Seconds([&] { ground = hylo::mapping::FilterGround(site, ClothFilterOptions{}); });
+      Seconds([&] { ground = hylo::terrain::FilterGround(site, ClothFilterOptions{}); });
   std::printf("ground: %d points, %.0f x %.0f m: %.2f s (%s)\n", count, ground_size_m,
               ground_size_m, ground_s, ground.message.c_str());
   // The fine-cloth setting for sparse airborne data (ISPRS, cloth_filter_test): 4x particles.
   ClothFilterOptions fine;
   fine.cloth_resolution_m = 0.5;
   fine.rigidness = 6;
-  fine.hole_fill = hylo::mapping::ClothHoleFill::kNearest;
-  const double fine_s = Seconds([&] { ground = hylo::mapping::FilterGround(site, fine); });
+  fine.hole_fill = hylo::terrain::ClothHoleFill::kNearest;
+  const double fine_s = Seconds([&] { ground = hylo::terrain::FilterGround(site, fine); });
   std::printf("ground, GR 0.5 RI 6 nearest fill: %.2f s (%s)\n", fine_s, ground.message.c_str());
   return 0;
 }

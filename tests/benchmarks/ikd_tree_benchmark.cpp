@@ -1,5 +1,5 @@
 // hylo_ikd_tree_benchmark: the ikd-tree map against nanoflann and PCL KdTreeFLANN on three
-// workloads (issue 4): 1. build from 1M points; 2. 5-NN on a 1M-point map; 3. a lidar-like
+// workloads: 1. build from 1M points; 2. 5-NN on a 1M-point map; 3. a lidar-like
 // run (see lidar_run.cpp). Prints a table with the targets and, with --json PATH, writes the
 // same figures as JSON. --quick shrinks every size for a smoke test.
 //
@@ -39,7 +39,7 @@ Config QuickConfig() {
 }
 
 // Workload 1: build each index from the same 1M points; heap growth gives bytes per point.
-void RunBuild(const registration::PointCloud& map, Report* report) {
+void RunBuild(const PointCloud& map, Report* report) {
   const std::string s = "workload1_build";
   const double n = static_cast<double>(map.size());
   report->Set(s, "points", n);
@@ -76,8 +76,7 @@ void RunBuild(const registration::PointCloud& map, Report* report) {
 
 // Workload 2: 5-NN for points near the surfaces (map samples + noise) on the 1M map; the
 // ikd-tree is called through registration::NeighborSearch, as registration code calls it.
-void RunKnn(const registration::PointCloud& map, const registration::PointCloud& queries,
-            Report* report) {
+void RunKnn(const PointCloud& map, const PointCloud& queries, Report* report) {
   const std::string s = "workload2_knn5";
   constexpr int kK = 5;
   const double nq = static_cast<double>(queries.size());
@@ -156,8 +155,8 @@ int main(int argc, char** argv) {
   report.Set("config", "times_are_thread_cpu_ms", 1.0);
   LidarLikeScene scene(LidarLikeScene::Options{});
   const int map_steps = 300;  // the 1M map spans 300 m of drive
-  const hylo::registration::PointCloud map = scene.Map(map_steps, config.map_points);
-  hylo::registration::PointCloud queries = scene.Map(map_steps, config.queries);
+  const hylo::PointCloud map = scene.Map(map_steps, config.map_points);
+  hylo::PointCloud queries = scene.Map(map_steps, config.queries);
   RunBuild(map, &report);
   RunKnn(map, queries, &report);
   const LidarRunResult run = RunLidar(config.run, &report);

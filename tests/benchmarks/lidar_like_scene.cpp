@@ -20,17 +20,17 @@ Eigen::Vector3f LidarLikeScene::SensorAt(int step) const {
   return {x, 8.f * std::sin(x / 150.f), GroundHeight(x, 0.f) + 1.8f};
 }
 
-registration::PointCloud LidarLikeScene::Scan(int step, int n) {
+PointCloud LidarLikeScene::Scan(int step, int n) {
   const Eigen::Vector3f sensor = SensorAt(step);
-  registration::PointCloud points;
+  PointCloud points;
   points.reserve(n);
   for (int i = 0; i < n; ++i) points.push_back(SampleAround(sensor));
   return points;
 }
 
-registration::PointCloud LidarLikeScene::Map(int last_step, int n) {
+PointCloud LidarLikeScene::Map(int last_step, int n) {
   std::uniform_int_distribution<int> step(0, last_step);
-  registration::PointCloud points;
+  PointCloud points;
   points.reserve(n);
   for (int i = 0; i < n; ++i) points.push_back(SampleAround(SensorAt(step(rng_))));
   return points;

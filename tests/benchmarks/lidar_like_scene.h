@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <random>
 
-#include "hylo/registration/point_types.h"
+#include "hylo/common/point_types.h"
 
 namespace hylo::benchmarks {
 
@@ -27,10 +27,10 @@ class LidarLikeScene {
   Eigen::Vector3f SensorAt(int step) const;
 
   /// `n` world points seen from SensorAt(step).
-  registration::PointCloud Scan(int step, int n);
+  PointCloud Scan(int step, int n);
 
   /// `n` points spread over the stretch of site seen along steps [0, last_step].
-  registration::PointCloud Map(int last_step, int n);
+  PointCloud Map(int last_step, int n);
 
  private:
   Eigen::Vector3f SampleAround(const Eigen::Vector3f& sensor);

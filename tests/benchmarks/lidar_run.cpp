@@ -18,10 +18,10 @@ constexpr float kMaxDistance = 5.f;  // m, as a point-to-plane match would use
 class VoxelMap {
  public:
   explicit VoxelMap(float voxel_m) : voxel_m_(voxel_m) {}
-  void Insert(const registration::PointCloud& scan) {
+  void Insert(const PointCloud& scan) {
     for (const Eigen::Vector3f& p : scan) {
-      const auto v = mapping::VoxelOf(p, voxel_m_);
-      const Eigen::Vector3f centre = mapping::VoxelCentre(v, voxel_m_);
+      const auto v = VoxelOf(p, voxel_m_);
+      const Eigen::Vector3f centre = VoxelCentre(v, voxel_m_);
       auto [it, fresh] = cells_.try_emplace(Key{v[0], v[1], v[2]}, p);
       if (!fresh && (p - centre).squaredNorm() < (it->second - centre).squaredNorm())
         it->second = p;
@@ -35,8 +35,8 @@ class VoxelMap {
       it = inside ? cells_.erase(it) : std::next(it);
     }
   }
-  registration::PointCloud Points() const {
-    registration::PointCloud points;
+  PointCloud Points() const {
+    PointCloud points;
     points.reserve(cells_.size());
     for (const auto& cell : cells_) points.push_back(cell.second);
     return points;
@@ -68,8 +68,7 @@ double Percentile(std::vector<double> v, double q) {
 
 // Rebuilds and queries one static tree on the current map; counts queries whose neighbours
 // (within kMaxDistance) differ from the ikd-tree's.
-void MeasureStatic(StaticTree* tree, const registration::PointCloud& map,
-                   const registration::PointCloud& scan,
+void MeasureStatic(StaticTree* tree, const PointCloud& map, const PointCloud& scan,
                    const std::vector<std::vector<float>>& ikd_d2, double* rebuild_ms,
                    double* query_ms, std::size_t* disagreements) {
   double t0 = NowMs();
@@ -102,7 +101,7 @@ LidarRunResult RunLidar(const LidarRunConfig& config, Report* report) {
   std::vector<std::vector<float>> ikd_d2(config.scan_points);
   std::size_t disagreements = 0;
   for (int step = 0; step < config.steps; ++step) {
-    const registration::PointCloud scan = scene.Scan(step, config.scan_points);
+    const PointCloud scan = scene.Scan(step, config.scan_points);
     const Eigen::Vector3f sensor = scene.SensorAt(step);
     const float behind = sensor.x() - config.window_m;
     const mapping::Box3f box{{behind - 3.f, -1e4f, -1e4f}, {behind, 1e4f, 1e4f}};
@@ -124,7 +123,7 @@ LidarRunResult RunLidar(const LidarRunConfig& config, Report* report) {
     step_ms.push_back(t3 - t0);
     if (step > 0 && step % config.static_every == 0 && model.Size() > 0) {
       StaticSample sample;
-      const registration::PointCloud map = model.Points();
+      const PointCloud map = model.Points();
       sample.map_points = static_cast<double>(map.size());
       MeasureStatic(&nanoflann, map, scan, ikd_d2, &sample.nanoflann_rebuild_ms,
                     &sample.nanoflann_query_ms, &disagreements);

@@ -8,7 +8,7 @@
 #include <nanoflann.hpp>
 #include <vector>
 
-#include "hylo/registration/point_types.h"
+#include "hylo/common/point_types.h"
 
 namespace hylo::benchmarks {
 
@@ -17,7 +17,7 @@ class StaticTree {
   virtual ~StaticTree() = default;
   virtual const char* Name() const = 0;
   /// (Re)builds the index over `points` (kept alive by the caller until the next Build).
-  virtual void Build(const registration::PointCloud& points) = 0;
+  virtual void Build(const PointCloud& points) = 0;
   /// Squared distances of the k nearest points to `query`, nearest first.
   virtual void KNearest(const Eigen::Vector3f& query, int k, std::vector<float>* d2) = 0;
 };
@@ -25,7 +25,7 @@ class StaticTree {
 class NanoflannTree final : public StaticTree {
  public:
   const char* Name() const override { return "nanoflann"; }
-  void Build(const registration::PointCloud& points) override {
+  void Build(const PointCloud& points) override {
     adaptor_.points = &points;
     index_ = std::make_unique<Index>(3, adaptor_, nanoflann::KDTreeSingleIndexAdaptorParams(10));
   }
@@ -38,7 +38,7 @@ class NanoflannTree final : public StaticTree {
 
  private:
   struct Adaptor {  // nanoflann's dataset concept over a PointCloud
-    const registration::PointCloud* points = nullptr;
+    const PointCloud* points = nullptr;
     std::size_t kdtree_get_point_count() const { return points->size(); }
     float kdtree_get_pt(std::size_t i, std::size_t dim) const { return (*points)[i][dim]; }
     template <class Box>

@@ -40,7 +40,7 @@ struct AssociationCost {
 
 AssociationCost MeasureAssociation(const hylo::mapping::MapManager& map,
                                    const hylo::estimation::OdometryPipelineOptions& options) {
-  using hylo::registration::PointCloud;
+  using hylo::PointCloud;
   AssociationCost cost;
   const PointCloud points = map.Flatten();
   if (points.empty()) return cost;
@@ -148,11 +148,11 @@ int main(int argc, char** argv) {
   estimation::OdometryPipelineOptions options = testing::PipelineOptionsFor(sim_options);
   if (no_deskew) options.preprocess.deskew = false;
   if (accel_bias_sigma > 0) {
-    options.estimator.ieskf.init_accel_bias_sigma_mps2 = accel_bias_sigma;
+    options.initial_uncertainty.accel_bias_sigma_mps2 = accel_bias_sigma;
   }
-  if (lidar_noise > 0) options.estimator.ieskf.lidar_noise_m = lidar_noise;
-  if (rotation_sigma > 0) options.estimator.ieskf.init_rotation_sigma_rad = rotation_sigma;
-  if (gravity_sigma > 0) options.estimator.ieskf.init_gravity_sigma_mps2 = gravity_sigma;
+  if (lidar_noise > 0) options.estimator.lidar_update.lidar_noise_m = lidar_noise;
+  if (rotation_sigma > 0) options.initial_uncertainty.rotation_sigma_rad = rotation_sigma;
+  if (gravity_sigma > 0) options.initial_uncertainty.gravity_sigma_mps2 = gravity_sigma;
   if (scan_voxel >= 0) options.preprocess.scan_voxel_m = scan_voxel;
   if (map_voxel > 0) options.map.voxel_size_m = map_voxel;
   if (point_stride > 0) options.preprocess.point_stride = point_stride;
@@ -227,7 +227,7 @@ int main(int argc, char** argv) {
     out.precision(9);
     for (const auto& e : run.estimate) {
       Eigen::Isometry3d truth;
-      if (!estimation::InterpolatePose(run.reference, e.t_ns, &truth)) continue;
+      if (!evaluation::InterpolatePose(run.reference, e.t_ns, &truth)) continue;
       const Eigen::Quaterniond qe(e.T_world_body.linear()), qt(truth.linear());
       out << e.t_ns * 1e-9 << ' ' << e.T_world_body.translation().transpose() << ' '
           << qe.coeffs().transpose() << ' ' << truth.translation().transpose() << ' '

@@ -1,4 +1,4 @@
-// Issue 8's figures on the simulated substation (issue 3): crafting thickness and time,
+// The offline chain's figures on the simulated substation: crafting thickness and time,
 // ground labels, traversability slope, all against the simulator's truth. Figures are
 // printed and written as JSON; tests/sim/site_mapping_test.cpp checks the --quick settings.
 //
@@ -17,7 +17,7 @@
 #include <string>
 
 #include "hylo/io/json.h"
-#include "hylo/sim/session_writer.h"
+#include "hylo/sim_io/session_writer.h"
 #include "site_mapping_eval_core.h"
 
 namespace {

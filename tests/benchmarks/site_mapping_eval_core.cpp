@@ -10,9 +10,9 @@
 #include <stdexcept>
 
 #include "hylo/registration/voxel_filter.h"
-#include "hylo/sim/reference_outputs.h"
 #include "hylo/sim/surface_distance.h"
 #include "hylo/sim/terrain.h"
+#include "hylo/sim_io/reference_outputs.h"
 
 namespace hylo::site_eval {
 namespace {
@@ -22,8 +22,8 @@ double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-registration::PointCloud ToFloat(const std::vector<Eigen::Vector3d>& points) {
-  registration::PointCloud out;
+PointCloud ToFloat(const std::vector<Eigen::Vector3d>& points) {
+  PointCloud out;
   out.reserve(points.size());
   for (const Eigen::Vector3d& p : points) out.push_back(p.cast<float>());
   return out;
@@ -101,10 +101,10 @@ std::vector<Eigen::Vector3d> TimingMap(const AccumulatedMap& map, std::size_t co
   return out;
 }
 
-double CraftSeconds(const std::vector<Eigen::Vector3d>& points, mapping::CraftOptions options,
+double CraftSeconds(const std::vector<Eigen::Vector3d>& points, terrain::CraftOptions options,
                     int threads) {
   options.num_threads = threads;
-  const mapping::CraftResult r = mapping::CraftMap(points, options);
+  const terrain::CraftResult r = terrain::CraftMap(points, options);
   return r.sampling_seconds + r.mls_seconds;
 }
 
@@ -120,7 +120,7 @@ CraftFigures MeasureCrafting(const SiteEvalOptions& options, const AccumulatedMa
   }
   f.sampled = MeasureThickness(field, primitives, sampled, options.thickness_samples);
   const auto start = Clock::now();
-  const mapping::CraftResult crafted = mapping::CraftMap(map.points_map, options.craft);
+  const terrain::CraftResult crafted = terrain::CraftMap(map.points_map, options.craft);
   f.seconds = SecondsSince(start);
   f.crafted_points = crafted.points_world.size();
   f.sampled_points = crafted.num_sampled;
@@ -137,9 +137,9 @@ CraftFigures MeasureCrafting(const SiteEvalOptions& options, const AccumulatedMa
 }
 
 // Cells of the 8-neighbourhood without ground points (outside the grid counts as none).
-int EmptyNeighbours(const mapping::GridMap& grid, std::size_t cell) {
-  const mapping::GridGeometry& g = grid.geometry();
-  const std::vector<float>& count = grid.Layer(mapping::layers::kPointCount);
+int EmptyNeighbours(const terrain::GridMap& grid, std::size_t cell) {
+  const terrain::GridGeometry& g = grid.geometry();
+  const std::vector<float>& count = grid.Layer(terrain::layers::kPointCount);
   int empty = 0;
   for (int dr = -1; dr <= 1; ++dr) {
     for (int dc = -1; dc <= 1; ++dc) {
@@ -151,13 +151,13 @@ int EmptyNeighbours(const mapping::GridMap& grid, std::size_t cell) {
 }
 
 // One row per cell with ground points or a slope: where the error sits, for analysis.
-void WriteCellTable(const std::string& path, const mapping::TraversabilityMap& map,
-                    const mapping::TruthField& truth, const mapping::TruthField& footprint) {
+void WriteCellTable(const std::string& path, const terrain::TraversabilityMap& map,
+                    const evaluation::TruthField& truth, const evaluation::TruthField& footprint) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error("cannot write '" + path + "'");
-  const mapping::GridMap& grid = map.grid;
-  const mapping::GridGeometry& g = grid.geometry();
-  namespace L = mapping::layers;
+  const terrain::GridMap& grid = map.grid;
+  const terrain::GridGeometry& g = grid.geometry();
+  namespace L = terrain::layers;
   out << "col,row,x,y,points,filled,elevation,slope,roughness,step,class,truth,footprint_truth,"
          "empty_neighbours\n";
   for (std::size_t c = 0; c < g.NumCells(); ++c) {
@@ -173,28 +173,28 @@ void WriteCellTable(const std::string& path, const mapping::TraversabilityMap& m
   }
 }
 
-SlopeFigures MeasureSlope(const SiteEvalOptions& options, const mapping::TruthField& truth,
-                          const mapping::TruthField& footprint_truth,
+SlopeFigures MeasureSlope(const SiteEvalOptions& options, const evaluation::TruthField& truth,
+                          const evaluation::TruthField& footprint_truth,
                           const std::vector<Eigen::Vector3d>& ground,
                           const std::vector<Eigen::Vector3d>& objects, const char* name,
                           bool estimate_edge_cells = false) {
   SlopeFigures f;
-  mapping::TraversabilityOptions traversability = options.traversability;
+  terrain::TraversabilityOptions traversability = options.traversability;
   if (estimate_edge_cells) traversability.surface.unknown_at_data_edge = false;
   const auto start = Clock::now();
-  const mapping::TraversabilityMap map =
-      mapping::ComputeTraversability(ground, objects, traversability);
+  const terrain::TraversabilityMap map =
+      terrain::ComputeTraversability(ground, objects, traversability);
   f.seconds = SecondsSince(start);
   f.measured_cells = map.summary.elevation.measured_cells;
   f.cells_at_data_edge = map.summary.surface.cells_at_data_edge;
   f.cells_finer_scale = map.summary.surface.cells_finer_scale;
   f.noise_m = map.summary.surface.noise_m;
-  f.slope = mapping::CompareSlope(map.grid, truth);
-  f.steep = mapping::CheckSteepCells(map.grid, map.classes, truth,
-                                     options.traversability.cost.max_slope_deg);
-  f.slope_footprint = mapping::CompareSlope(map.grid, footprint_truth);
-  f.steep_footprint = mapping::CheckSteepCells(map.grid, map.classes, footprint_truth,
-                                               options.traversability.cost.max_slope_deg);
+  f.slope = evaluation::CompareSlope(map.grid, truth);
+  f.steep = evaluation::CheckSteepCells(map.grid, map.classes, truth,
+                                        options.traversability.cost.max_slope_deg);
+  f.slope_footprint = evaluation::CompareSlope(map.grid, footprint_truth);
+  f.steep_footprint = evaluation::CheckSteepCells(map.grid, map.classes, footprint_truth,
+                                                  options.traversability.cost.max_slope_deg);
   if (options.write_cell_tables) {
     WriteCellTable(options.out_dir + "/cells_" + name + ".csv", map, truth, footprint_truth);
   }
@@ -264,13 +264,12 @@ AccumulatedMap AccumulateSessionA(const sim::SimulationOptions& options, const s
   AccumulatedMap map;
   std::vector<sim::ReturnTruth> truth;
   for (int64_t index = 0; index < scans; index += scan_stride) {
-    const estimation::LidarScan scan = lidar.Scan(static_cast<int>(index), session.start_ns(),
-                                                  &truth);
+    const LidarScan scan = lidar.Scan(static_cast<int>(index), session.start_ns(), &truth);
     // The stamp carries the lidar clock offset; the true firing time does not.
     const int64_t scan_true_ns = scan.t_ns - options.lidar.time_offset_ns - session.start_ns();
     map.scan_begin.push_back(map.points_map.size());
     for (std::size_t k = 0; k < scan.points.size(); ++k) {
-      const registration::ScanPoint& p = scan.points[k];
+      const ScanPoint& p = scan.points[k];
       const Eigen::Isometry3d T_map_lidar =
           session.trajectory().PoseAt(scan_true_ns + p.offset_ns) * options.lidar.T_imu_lidar;
       map.points_map.push_back(T_map_lidar * p.position_lidar.cast<double>());
@@ -281,7 +280,7 @@ AccumulatedMap AccumulateSessionA(const sim::SimulationOptions& options, const s
   return map;
 }
 
-mapping::TruthField FootprintSlope(const sim::Site& site, double radius_m) {
+evaluation::TruthField FootprintSlope(const sim::Site& site, double radius_m) {
   std::vector<Eigen::Vector2d> offsets;
   const double step_m = 0.1;
   const int k = static_cast<int>(std::floor(radius_m / step_m));
@@ -306,7 +305,7 @@ mapping::TruthField FootprintSlope(const sim::Site& site, double radius_m) {
   };
 }
 
-mapping::TruthField ReadSimSlopeGrid(const std::string& path) {
+evaluation::TruthField ReadSimSlopeGrid(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot read slope grid '" + path + "'");
   double x0 = 0, y0 = 0, resolution = 0;
@@ -356,14 +355,14 @@ SiteFigures EvaluateSite(const SiteEvalOptions& options) {
   for (std::size_t i : kept) points.push_back(figures.map.points_map[i]);
   figures.ground_filter_points = points.size();
   const auto start = Clock::now();
-  const mapping::ClothFilterResult csf = mapping::FilterGround(points, options.cloth);
+  const terrain::ClothFilterResult csf = terrain::FilterGround(points, options.cloth);
   figures.ground.seconds = SecondsSince(start);
   figures.ground.iterations = csf.iterations;
   std::vector<Eigen::Vector3d> csf_ground, csf_objects, true_ground, true_objects;
   GroundFigures& g = figures.ground;
   for (std::size_t k = 0; k < kept.size(); ++k) {
     const bool truth_ground = figures.map.is_ground[kept[k]] != 0;
-    const bool said_ground = csf.ok && csf.labels[k] == mapping::GroundLabel::kGround;
+    const bool said_ground = csf.ok && csf.labels[k] == terrain::GroundLabel::kGround;
     ++(truth_ground ? (said_ground ? g.ground_as_ground : g.ground_as_object)
                     : (said_ground ? g.object_as_ground : g.object_as_object));
     (said_ground ? csf_ground : csf_objects).push_back(points[k]);
@@ -373,8 +372,8 @@ SiteFigures EvaluateSite(const SiteEvalOptions& options) {
   std::filesystem::create_directories(options.out_dir);
   const std::string slope_path = options.out_dir + "/site_slope.txt";
   sim::WriteSlopeGrid(slope_path, site, options.traversability.resolution_m);
-  const mapping::TruthField truth = ReadSimSlopeGrid(slope_path);
-  const mapping::TruthField footprint =
+  const evaluation::TruthField truth = ReadSimSlopeGrid(slope_path);
+  const evaluation::TruthField footprint =
       FootprintSlope(site, options.traversability.surface.normal_radius_m);
   figures.slope_csf =
       MeasureSlope(options, truth, footprint, csf_ground, csf_objects, "cloth_filter");

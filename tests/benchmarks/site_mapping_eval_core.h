@@ -1,5 +1,5 @@
 #pragma once
-// The offline mapping chain measured on the simulated substation (issue 8's simulator
+// The offline mapping chain measured on the simulated substation (the simulator's
 // figures), shared by the hylo_site_mapping_eval program and the site_mapping_test:
 //   1. session A's scans registered with the TRUE poses (each point at its own time), so the
 //      map's thickness is sensor noise only; crafting (uniform sampling + MLS) measured by the
@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "hylo/mapping/cloth_filter.h"
-#include "hylo/mapping/craft.h"
-#include "hylo/mapping/traversability.h"
-#include "hylo/mapping/traversability_eval.h"
+#include "hylo/evaluation/traversability_eval.h"
 #include "hylo/sim/simulator.h"
+#include "hylo/terrain/cloth_filter.h"
+#include "hylo/terrain/craft.h"
+#include "hylo/terrain/traversability.h"
 
 namespace hylo::site_eval {
 
@@ -26,11 +26,11 @@ struct SiteEvalOptions {
   int scan_stride = 1;               ///< accumulate every n-th scan of session A (>= 1)
   std::size_t thickness_samples = 2'000'000;  ///< raw points whose distance is measured
                                               ///< (evenly strided subset; 0 = all)
-  mapping::CraftOptions craft;       ///< `hylo craft` defaults
+  terrain::CraftOptions craft;                ///< `hylo craft` defaults
   std::size_t timing_points = 1'000'000;  ///< map size for the 1- vs 2-thread timing (0 = skip)
   double ground_voxel_m = 0.1;       ///< one return per voxel before the ground filter, m
-  mapping::ClothFilterOptions cloth; ///< `hylo ground` defaults (the paper's)
-  mapping::TraversabilityOptions traversability;  ///< `hylo traversability` defaults
+  terrain::ClothFilterOptions cloth;              ///< `hylo ground` defaults (the paper's)
+  terrain::TraversabilityOptions traversability;  ///< `hylo traversability` defaults
   std::string out_dir;               ///< site_slope.txt (and nothing else) is written here
   bool measure_craft = true;         ///< part 1 (crafting); false leaves CraftFigures empty
   bool measure_ground_and_slope = true;  ///< parts 2 and 3; false leaves their figures empty
@@ -91,13 +91,13 @@ struct GroundFigures {
 };
 
 struct SlopeFigures {
-  mapping::LayerComparison slope;  ///< slope (deg) on cells with data vs site_slope.txt
-  mapping::SteepCellCheck steep;   ///< cells truly steeper than the vehicle limit
+  evaluation::LayerComparison slope;  ///< slope (deg) on cells with data vs site_slope.txt
+  evaluation::SteepCellCheck steep;   ///< cells truly steeper than the vehicle limit
   /// The same against the clean terrain's slope at the estimator's scale (FootprintSlope):
   /// site_slope.txt is the slope over one cell, the estimate that over the vehicle footprint,
   /// so part of the first comparison's error is the difference of scales, not estimation.
-  mapping::LayerComparison slope_footprint;
-  mapping::SteepCellCheck steep_footprint;
+  evaluation::LayerComparison slope_footprint;
+  evaluation::SteepCellCheck steep_footprint;
   std::size_t measured_cells = 0;
   std::size_t cells_at_data_edge = 0;  ///< cells left unknown at a data edge
   std::size_t cells_finer_scale = 0;   ///< cells whose normal came from a block, not the
@@ -135,10 +135,10 @@ SiteFigures EvaluateSite(const SiteEvalOptions& options);
 
 /// True slope (deg) of the clean terrain (no gravel) at the vehicle's scale: the tilt of the
 /// least-squares plane through its heights on a 0.1 m lattice within `radius_m` of (x, y).
-mapping::TruthField FootprintSlope(const sim::Site& site, double radius_m);
+evaluation::TruthField FootprintSlope(const sim::Site& site, double radius_m);
 
 /// Reads the simulator's slope grid (reference_outputs.h format) as a field: the value of
 /// the cell holding (x, y), NaN outside. Throws std::runtime_error naming the file.
-mapping::TruthField ReadSimSlopeGrid(const std::string& path);
+evaluation::TruthField ReadSimSlopeGrid(const std::string& path);
 
 }  // namespace hylo::site_eval

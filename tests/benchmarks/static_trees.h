@@ -18,7 +18,7 @@ namespace hylo::benchmarks {
 class PclTree final : public StaticTree {
  public:
   const char* Name() const override { return "pcl_kdtree_flann"; }
-  static pcl::PointCloud<pcl::PointXYZ>::Ptr ToPcl(const registration::PointCloud& points) {
+  static pcl::PointCloud<pcl::PointXYZ>::Ptr ToPcl(const PointCloud& points) {
     auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
     cloud->resize(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
@@ -27,7 +27,7 @@ class PclTree final : public StaticTree {
     return cloud;
   }
   void SetCloud(pcl::PointCloud<pcl::PointXYZ>::Ptr cloud) { cloud_ = std::move(cloud); }
-  void Build(const registration::PointCloud&) override {
+  void Build(const PointCloud&) override {
     tree_ = std::make_unique<pcl::KdTreeFLANN<pcl::PointXYZ>>();
     tree_->setInputCloud(cloud_);
   }

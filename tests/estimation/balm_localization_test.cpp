@@ -1,4 +1,4 @@
-// Localization on real scans without IMU (issue 6): a prior map is built from the
+// Localization on real scans without IMU: a prior map is built from the
 // even-numbered BALM scans at their reference poses, the odd-numbered scans are localized in
 // it (no-IMU mode) from a perturbed first pose, and every pose is compared with poses.csv.
 // No alignment: the prior map is in the reference frame, so the error is absolute. The same
@@ -55,10 +55,10 @@ TEST_P(BalmLocalization, OddScansInAMapOfTheEvenScans) {
   const mapping::PriorMap prior = mapping::BuildPriorMap(map_world, mapping::PriorMapOptions());
 
   OdometryPipelineOptions options;
-  options.estimator.use_imu = false;
+  options.imu.enabled = false;
   options.preprocess.scan_voxel_m = 0.3;
   // Odd scans are 1 s apart and the hand-held sensor turns up to ~60 deg in that time.
-  options.estimator.ieskf.no_imu_yaw_search_deg = 90.0;
+  options.estimator.no_imu.yaw_search_deg = 90.0;
   options.estimator.ieskf.max_iterations = 10;
   options.localization.update_after_s = -1.0;
   // Without IMU at 1 Hz the constant-velocity prediction is often tens of degrees off: every

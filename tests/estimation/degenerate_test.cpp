@@ -4,13 +4,14 @@
 
 #include <random>
 
-#include "hylo/estimation/ieskf.h"
+#include "hylo/estimation/ieskf/ieskf.h"
+#include "hylo/estimation/initial_uncertainty.h"
 #include "hylo/registration/brute_force_search.h"
 
 namespace hylo::estimation {
 namespace {
 
-using registration::PointCloud;
+using hylo::PointCloud;
 
 // Points on axis-aligned rectangles (one per face), spacing 0.1 m.
 void AddFace(int fixed_axis, double fixed, Eigen::Vector2d lo, Eigen::Vector2d hi,
@@ -58,14 +59,14 @@ struct Outcome {
 Outcome Register(const PointCloud& map, const lie::SE3d& T_true) {
   const registration::BruteForceSearch search(map);
   const registration::PlaneMatcher matcher(search, registration::PlaneMatcherOptions{});
-  Estimator::Options options;
-  options.use_imu = false;
-  Ieskf filter(options);
+  ImuOptions no_imu;
+  no_imu.enabled = false;
+  Ieskf filter(EstimatorOptions{}, no_imu);
   NavState x;
   x.R_map_imu = T_true.so3() * lie::SO3d::Exp(Eigen::Vector3d(0.01, -0.01, 0.02));
   x.p_map_imu = T_true.translation() + Eigen::Vector3d(0.08, -0.05, 0.04);
   // A prior as uncertain as the perturbation: 0.1 m, 0.1 rad (1 sigma).
-  StateCovariance P0 = Ieskf::InitialCovariance(options.ieskf);
+  StateCovariance P0 = InitialUncertainty().SlamCovariance();
   P0.block<3, 3>(state_index::kPosition, state_index::kPosition).diagonal().setConstant(0.01);
   P0.block<3, 3>(state_index::kRotation, state_index::kRotation).diagonal().setConstant(0.01);
   filter.Initialize(x, P0);

@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "hylo/estimation/ieskf.h"
+#include "hylo/estimation/ieskf/ieskf.h"
 #include "hylo/estimation/imu_propagation.h"
 
 namespace hylo::estimation {

@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-namespace hylo::estimation::lie::testing {
+namespace hylo::lie::testing {
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -87,4 +87,4 @@ void ExpectJacobiansMatchCentralDifferences(const std::vector<typename Group::Ta
   }
 }
 
-}  // namespace hylo::estimation::lie::testing
+}  // namespace hylo::lie::testing

@@ -3,7 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "hylo/common/time.h"
-#include "hylo/estimation/ieskf.h"
+#include "hylo/estimation/ieskf/ieskf.h"
+#include "hylo/estimation/initial_uncertainty.h"
 #include "hylo/sim/imu_model.h"
 #include "hylo/sim/simulator.h"
 
@@ -29,9 +30,8 @@ TEST(ImuPropagation, NoiseFreeImuReproducesTheTrajectory) {
       site.route_a, *site.terrain, sim::TrajectoryOptions{}, SecondsToNanos(40.0), &rng);
   const double g = 9.81;
   const int64_t dt_ns = 5'000'000, t0 = SecondsToNanos(3.0), t1 = SecondsToNanos(13.0);
-  Estimator::Options options;
-  Ieskf filter(options);
-  filter.Initialize(FromTruth(traj.StateAt(t0), t0, g), Ieskf::InitialCovariance(options.ieskf));
+  Ieskf filter(EstimatorOptions{}, ImuOptions{});
+  filter.Initialize(FromTruth(traj.StateAt(t0), t0, g), InitialUncertainty().SlamCovariance());
   for (int64_t t = t0; t <= t1; t += dt_ns) {
     filter.AddImu(sim::TrueImuSample(traj.StateAt(t), g, t));
   }
@@ -55,10 +55,9 @@ TEST(ImuPropagation, NoiseFreeImuReproducesTheTrajectory) {
 }
 
 TEST(ImuPropagation, CovarianceGrowsWithoutMeasurements) {
-  Estimator::Options options;
-  Ieskf filter(options);
+  Ieskf filter(EstimatorOptions{}, ImuOptions{});
   NavState x;
-  filter.Initialize(x, Ieskf::InitialCovariance(options.ieskf));
+  filter.Initialize(x, InitialUncertainty().SlamCovariance());
   const double before = filter.PoseCovariance().trace();
   for (int i = 0; i <= 200; ++i) {
     ImuSample s;

@@ -1,10 +1,16 @@
-// The localizer's per-scan health: a scan registered where it belongs fits the map surface;
-// one tilted by a few degrees or shifted off the walls does not, even in a dense map where
-// most points still have a map point nearby.
+// The localizer's per-scan health, read from the update's own residuals: a scan registered
+// where it belongs fits the map surface; one tilted by a few degrees or shifted off the walls
+// does not, even in a dense map where most points still have a map point nearby. And both
+// back-ends report those residuals for every point of the scan.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <memory>
 
+#include "hylo/estimation/estimator_options.h"
+#include "hylo/estimation/imu_options.h"
+#include "hylo/estimation/initial_uncertainty.h"
 #include "hylo/estimation/localization.h"
 #include "hylo/mapping/ikd_tree.h"
 
@@ -13,8 +19,8 @@ namespace {
 
 // A 20 m × 20 m room: floor and four walls 3 m high, sampled every `step_m`, offset by
 // `phase_m` so that the scan's points are not the map's.
-registration::PointCloud Room(float step_m, float phase_m) {
-  registration::PointCloud points;
+PointCloud Room(float step_m, float phase_m) {
+  PointCloud points;
   for (float a = -10.0f + phase_m; a < 10.0f; a += step_m) {
     for (float b = -10.0f + phase_m; b < 10.0f; b += step_m) points.emplace_back(a, b, 0.0f);
     for (float z = phase_m; z < 3.0f; z += step_m) {
@@ -27,11 +33,11 @@ registration::PointCloud Room(float step_m, float phase_m) {
   return points;
 }
 
-registration::PointCloud Moved(const registration::PointCloud& points, double angle_deg,
-                               const Eigen::Vector3f& axis, const Eigen::Vector3f& shift_m) {
+PointCloud Moved(const PointCloud& points, double angle_deg, const Eigen::Vector3f& axis,
+                 const Eigen::Vector3f& shift_m) {
   const Eigen::Matrix3f R =
       Eigen::AngleAxisf(static_cast<float>(angle_deg * M_PI / 180.0), axis).toRotationMatrix();
-  registration::PointCloud moved;
+  PointCloud moved;
   for (const Eigen::Vector3f& p : points) moved.push_back(R * p + shift_m);
   return moved;
 }
@@ -41,13 +47,27 @@ class ScanHealthTest : public ::testing::Test {
   ScanHealthTest() : planes_(map_, registration::PlaneMatcherOptions()) {
     map_.Build(Room(0.1f, 0.0f));
   }
-  ScanHealth Health(const registration::PointCloud& scan, std::size_t matches = 1000) const {
-    return EvaluateScanHealth(scan, planes_, matches, options_);
+  // What an update registering `scan_map` (already in the map frame) would report: each
+  // point's residual to the plane of its nearest map points, NaN without one.
+  UpdateSummary UpdateAt(const PointCloud& scan_map, std::size_t matches = 1000) const {
+    UpdateSummary update;
+    update.num_points = scan_map.size();
+    update.num_matches = matches;
+    for (const Eigen::Vector3f& p : scan_map) {
+      registration::Plane plane;
+      update.point_residuals_m.push_back(planes_.Match(p.cast<double>(), &plane)
+                                             ? static_cast<float>(plane.Distance(p.cast<double>()))
+                                             : std::numeric_limits<float>::quiet_NaN());
+    }
+    return update;
+  }
+  ScanHealth Health(const PointCloud& scan, std::size_t matches = 1000) const {
+    return EvaluateScanHealth(UpdateAt(scan, matches), options_);
   }
   mapping::IkdTree map_;
   registration::PlaneMatcher planes_;
   LocalizationOptions options_;
-  const registration::PointCloud scan_ = Room(0.3f, 0.05f);
+  const PointCloud scan_ = Room(0.3f, 0.05f);
 };
 
 TEST_F(ScanHealthTest, AScanWhereItBelongsIsGood) {
@@ -79,12 +99,47 @@ TEST_F(ScanHealthTest, TooFewPlaneMatchesIsBadEvenWhenTheFitIsGood) {
   EXPECT_FALSE(h.good);
 }
 
-TEST_F(ScanHealthTest, AnEmptyScanOrMapIsNotGood) {
-  EXPECT_FALSE(Health(registration::PointCloud()).good);
-  const mapping::IkdTree empty;
-  const registration::PlaneMatcher no_planes(empty, registration::PlaneMatcherOptions());
-  EXPECT_FALSE(EvaluateScanHealth(scan_, no_planes, 1000, options_).good);
+TEST_F(ScanHealthTest, AnEmptyScanOrAnUpdateWithoutResidualsIsNotGood) {
+  EXPECT_FALSE(Health(PointCloud()).good);
+  UpdateSummary not_applied;  // e.g. too few matches: no residuals reported
+  not_applied.num_points = scan_.size();
+  EXPECT_FALSE(EvaluateScanHealth(not_applied, options_).good);
 }
+
+class UpdateResidualsTest : public ScanHealthTest,
+                            public ::testing::WithParamInterface<Estimator::Backend> {};
+
+TEST_P(UpdateResidualsTest, EveryPointGetsItsResidualAtTheFinalPose) {
+  // The room's scan from 5 cm and 1° off: the update pulls it back, and its residuals say so.
+  EstimatorOptions options;
+  options.backend = GetParam();
+  ImuOptions no_imu;
+  no_imu.enabled = false;
+  const std::unique_ptr<Estimator> estimator = Estimator::Create(options, no_imu);
+  NavState start;
+  start.R_map_imu = lie::SO3d::Exp(Eigen::Vector3d(0.0, 0.0, M_PI / 180.0));
+  start.p_map_imu = Eigen::Vector3d(0.05, -0.03, 0.02);
+  estimator->Initialize(start, InitialUncertainty().LocalizedCovariance());
+  DeskewedScan scan;
+  scan.t_ns = 0;
+  scan.points_lidar = scan_;  // the true pose is the identity
+  const UpdateSummary update = estimator->Update(scan, planes_);
+  ASSERT_TRUE(update.applied) << update.message;
+  ASSERT_EQ(update.point_residuals_m.size(), scan_.size());
+  std::size_t with_plane = 0;
+  for (float r : update.point_residuals_m) with_plane += std::isfinite(r) ? 1 : 0;
+  EXPECT_GE(with_plane, update.num_matches);
+  const ScanHealth from_update = EvaluateScanHealth(update, options_);
+  EXPECT_TRUE(from_update.good);
+  EXPECT_GT(from_update.inlier_ratio, 0.9);
+  EXPECT_NEAR(from_update.inlier_ratio, Health(scan_).inlier_ratio, 0.05);
+  EXPECT_LT(estimator->state().p_map_imu.norm(), 0.01);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothBackends, UpdateResidualsTest,
+                         ::testing::Values(Estimator::Backend::kIeskf,
+                                           Estimator::Backend::kSlidingWindow),
+                         [](const auto& info) { return ToString(info.param); });
 
 }  // namespace
 }  // namespace hylo::estimation

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/estimation/scan_preprocessor.h"
 
 namespace hylo::estimation {
 namespace {
@@ -20,7 +21,7 @@ LidarScan WallScan(const std::vector<int>& returns_per_ring) {
   for (int column = 0; column < columns; ++column) {
     for (std::size_t ring = 0; ring < returns_per_ring.size(); ++ring) {
       if (column >= returns_per_ring[ring]) continue;
-      registration::ScanPoint p;
+      ScanPoint p;
       p.position_lidar = Eigen::Vector3f(5.f, -4.f + 0.02f * column, 0.25f * ring);
       p.offset_ns = column * 100'000;
       p.ring = static_cast<uint16_t>(ring);
@@ -32,7 +33,7 @@ LidarScan WallScan(const std::vector<int>& returns_per_ring) {
 
 std::size_t PointsKeptForRegistration(const LidarScan& scan, int stride) {
   OdometryPipelineOptions options;
-  options.estimator.use_imu = false;  // the first scan is registered at once
+  options.imu.enabled = false;            // the first scan is registered at once
   options.preprocess.scan_voxel_m = 0.0;  // no voxel: the stride alone decides
   options.preprocess.point_stride = stride;
   OdometryPipeline pipeline(options);

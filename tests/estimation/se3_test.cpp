@@ -1,4 +1,4 @@
-#include "hylo/estimation/lie/se3.h"
+#include "hylo/lie/se3.h"
 
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@
 // differences of the defining relations, and the 4×4 matrix algebra, at rotation angles 0,
 // 1e-9, on both sides of the series switches, generic, and just below π.
 
-namespace hylo::estimation::lie {
+namespace hylo::lie {
 namespace {
 
 using Vec3 = Eigen::Vector3d;
@@ -199,4 +199,4 @@ TEST(SE3, JacobiansInstantiateWithJets) {
 }
 
 }  // namespace
-}  // namespace hylo::estimation::lie
+}  // namespace hylo::lie

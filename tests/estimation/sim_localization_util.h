@@ -27,8 +27,8 @@ class LocalizationSink : public sim::SessionSink {
   LocalizationSink(const estimation::OdometryPipelineOptions& options, float dense_voxel_m)
       : pipeline(options), dense(dense_voxel_m) {}
 
-  void OnImu(const estimation::ImuSample& s) override { pipeline.AddImu(s); }
-  void OnScan(const estimation::LidarScan& s) override {
+  void OnImu(const ImuSample& s) override { pipeline.AddImu(s); }
+  void OnScan(const LidarScan& s) override {
     if (before_scan) before_scan(scans_seen_, &pipeline);
     ++scans_seen_;
     pipeline.AddScan(s);
@@ -37,9 +37,17 @@ class LocalizationSink : public sim::SessionSink {
   void OnTruth(const sim::TruthSample& t) override { truth.push_back({t.t_ns, t.T_map_imu}); }
   void Finish() { Consume(true); }
 
-  /// T_map_imu per processed scan.
-  std::vector<estimation::TimedPose> Estimate() const {
-    std::vector<estimation::TimedPose> estimate;
+  /// T_map_imu per processed scan, finalized (the trajectory a run writes).
+  std::vector<evaluation::TimedPose> Estimate() const {
+    std::vector<evaluation::TimedPose> estimate;
+    for (const auto& x : finalized) {
+      estimate.push_back({x.t_ns, Eigen::Isometry3d(x.T_map_imu().Matrix())});
+    }
+    return estimate;
+  }
+  /// T_map_imu per processed scan, live (the odometry stream).
+  std::vector<evaluation::TimedPose> LiveEstimate() const {
+    std::vector<evaluation::TimedPose> estimate;
     for (const auto& r : results) {
       estimate.push_back({r.t_ns, Eigen::Isometry3d(r.state.T_map_imu().Matrix())});
     }
@@ -48,19 +56,25 @@ class LocalizationSink : public sim::SessionSink {
 
   estimation::OdometryPipeline pipeline;
   std::vector<estimation::ScanResult> results;  // registered points moved into `dense`
-  std::vector<estimation::TimedPose> truth;     // T_site_imu at the IMU rate
+  std::vector<estimation::NavState> finalized;  // the back-end's finalized states
+  std::vector<evaluation::TimedPose> truth;     // T_site_imu at the IMU rate
   registration::UniformSampler dense;
   /// Called before the scan with this index enters the pipeline (e.g. a relocalization).
   std::function<void(std::size_t, estimation::OdometryPipeline*)> before_scan;
 
  private:
-  void Consume(bool flush) {
+  void Consume(bool finish) {
     const std::size_t first = results.size();
-    pipeline.Process(&results, flush);
+    if (finish) {
+      pipeline.Finish(&results);
+    } else {
+      pipeline.Process(&results);
+    }
+    for (estimation::NavState& x : pipeline.TakeFinalizedStates()) finalized.push_back(x);
     for (std::size_t i = first; i < results.size(); ++i) {
       auto& points = results[i].registered_points_map;
       if (!points.empty()) dense.Add(points);
-      registration::PointCloud().swap(points);
+      PointCloud().swap(points);
     }
   }
 
@@ -70,26 +84,26 @@ class LocalizationSink : public sim::SessionSink {
 /// Session A mapped by SLAM: the dense map in A's map frame and where that frame lies on the
 /// site (from A's first pose against the truth).
 struct SimPrior {
-  registration::PointCloud points_map;
+  PointCloud points_map;
   Eigen::Isometry3d T_site_map = Eigen::Isometry3d::Identity();
-  estimation::AteResult slam_ate;
+  evaluation::AteResult slam_ate;
 };
 
 inline SimPrior BuildSimPrior(const sim::SimulationOptions& sim_options, const sim::Site& site) {
   estimation::OdometryPipelineOptions options = PipelineOptionsFor(sim_options);
-  options.registered_scan_voxel_m = 0.1;
+  options.output.dense_map_voxel_m = 0.1;
   LocalizationSink sink(options, 0.1f);
   sim::SessionSimulator(sim_options, site, sim::SessionId::kA).Run(&sink);
   sink.Finish();
   SimPrior prior;
   prior.points_map = sink.dense.points();
-  const std::vector<estimation::TimedPose> estimate = sink.Estimate();
+  const std::vector<evaluation::TimedPose> estimate = sink.Estimate();
   if (estimate.empty()) return prior;
   Eigen::Isometry3d T_site_imu;
-  if (estimation::InterpolatePose(sink.truth, estimate.front().t_ns, &T_site_imu)) {
+  if (evaluation::InterpolatePose(sink.truth, estimate.front().t_ns, &T_site_imu)) {
     prior.T_site_map = T_site_imu * estimate.front().T_world_body.inverse();
   }
-  prior.slam_ate = estimation::ComputeAte(estimate, sink.truth);
+  prior.slam_ate = evaluation::ComputeAte(estimate, sink.truth);
   return prior;
 }
 

@@ -1,5 +1,5 @@
 // Lidar-inertial odometry on simulated session A against the simulator's ground truth, for
-// both lidar layouts, at the simulator's full resolution (0.2 deg columns) and the issue's
+// both lidar layouts, at the simulator's full resolution (0.2 deg columns) and the target
 // length (120 s, > 100 m). About 30 s of CPU per layout (simulation included), which fits
 // the CI budget; hylo_odometry_benchmark prints the same figures with timing.
 #include <gtest/gtest.h>

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "hylo/estimation/odometry_pipeline.h"
-#include "hylo/estimation/trajectory_metrics.h"
+#include "hylo/evaluation/trajectory_metrics.h"
 #include "hylo/sim/simulator.h"
 
 namespace hylo::testing {
@@ -14,14 +14,13 @@ namespace hylo::testing {
 /// Pipeline settings matching the simulator's sensors (extrinsic, IMU noise, gravity).
 inline estimation::OdometryPipelineOptions PipelineOptionsFor(const sim::SimulationOptions& s) {
   estimation::OdometryPipelineOptions o;
-  o.gravity_mps2 = s.imu.gravity_mps2;
-  o.estimator.imu_noise.accel_noise_density = s.imu.accel_noise_density;
-  o.estimator.imu_noise.gyro_noise_density = s.imu.gyro_noise_density;
-  o.estimator.imu_noise.accel_bias_random_walk = s.imu.accel_bias_random_walk;
-  o.estimator.imu_noise.gyro_bias_random_walk = s.imu.gyro_bias_random_walk;
+  o.imu.gravity_mps2 = s.imu.gravity_mps2;
+  o.imu.noise.accel_noise_density = s.imu.accel_noise_density;
+  o.imu.noise.gyro_noise_density = s.imu.gyro_noise_density;
+  o.imu.noise.accel_bias_random_walk = s.imu.accel_bias_random_walk;
+  o.imu.noise.gyro_bias_random_walk = s.imu.gyro_bias_random_walk;
   const Eigen::Isometry3d& T = s.lidar.T_imu_lidar;
-  o.T_imu_lidar = estimation::lie::SE3d(
-      estimation::lie::SO3d::FromMatrix(T.linear()), T.translation());
+  o.T_imu_lidar = lie::SE3d(lie::SO3d::FromMatrix(T.linear()), T.translation());
   o.preprocess.min_range_m = static_cast<float>(s.lidar.min_range_m);
   o.preprocess.max_range_m = static_cast<float>(s.lidar.max_range_m);
   return o;
@@ -29,9 +28,11 @@ inline estimation::OdometryPipelineOptions PipelineOptionsFor(const sim::Simulat
 
 struct SimRun {
   std::vector<estimation::ScanResult> results;
-  std::vector<estimation::TimedPose> estimate;   ///< T_map_imu per scan end
-  std::vector<estimation::TimedPose> reference;  ///< true T_map_imu at the IMU rate
-  estimation::AteResult ate;
+  std::vector<evaluation::TimedPose> estimate;       ///< finalized T_map_imu per scan end
+  std::vector<evaluation::TimedPose> live_estimate;  ///< live T_map_imu per scan end
+  std::vector<evaluation::TimedPose> reference;      ///< true T_map_imu at the IMU rate
+  evaluation::AteResult ate;       ///< of the finalized states (the trajectory a run writes)
+  evaluation::AteResult live_ate;  ///< of the live states (what odometry published)
   estimation::PipelineCounters counters;
   std::size_t map_points = 0;
   bool failed = false;
@@ -44,29 +45,38 @@ class PipelineSink : public sim::SessionSink {
  public:
   explicit PipelineSink(const estimation::OdometryPipelineOptions& options)
       : pipeline_(options) {}
-  void OnImu(const estimation::ImuSample& s) override { pipeline_.AddImu(s); }
-  void OnScan(const estimation::LidarScan& s) override {
+  void OnImu(const ImuSample& s) override { pipeline_.AddImu(s); }
+  void OnScan(const LidarScan& s) override {
     pipeline_.AddScan(s);
     pipeline_.Process(&run_.results);
+    TakeFinalized();
   }
   void OnTruth(const sim::TruthSample& t) override {
     run_.reference.push_back({t.t_ns, t.T_map_imu});
   }
   SimRun Finish() {
-    pipeline_.Process(&run_.results, true);
+    pipeline_.Finish(&run_.results);
+    TakeFinalized();
     run_.failed = pipeline_.status() == estimation::OdometryPipeline::Status::kFailed;
     run_.message = pipeline_.message();
     run_.counters = pipeline_.counters();
     run_.map_points = pipeline_.map().Size();
     for (const estimation::ScanResult& r : run_.results) {
-      run_.estimate.push_back({r.t_ns, Eigen::Isometry3d(r.state.T_map_imu().Matrix())});
+      run_.live_estimate.push_back({r.t_ns, Eigen::Isometry3d(r.state.T_map_imu().Matrix())});
     }
-    run_.ate = estimation::ComputeAte(run_.estimate, run_.reference);
+    run_.ate = evaluation::ComputeAte(run_.estimate, run_.reference);
+    run_.live_ate = evaluation::ComputeAte(run_.live_estimate, run_.reference);
     return std::move(run_);
   }
   const estimation::OdometryPipeline& pipeline() const { return pipeline_; }
 
  private:
+  void TakeFinalized() {
+    for (const estimation::NavState& x : pipeline_.TakeFinalizedStates()) {
+      run_.estimate.push_back({x.t_ns, Eigen::Isometry3d(x.T_map_imu().Matrix())});
+    }
+  }
+
   estimation::OdometryPipeline pipeline_;
   SimRun run_;
 };

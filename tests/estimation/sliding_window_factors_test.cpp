@@ -1,6 +1,8 @@
 // The smoother's Ceres pieces: the SO3 manifold's invariants (Ceres' own checks), every
 // analytic factor Jacobian against Ceres' numeric differences through the manifold, and the
 // Schur-complement marginalisation against the marginal of a known Gaussian.
+#include "sliding_window_factors.h"
+
 #include <ceres/gradient_checker.h>
 #include <ceres/manifold_test_utils.h>
 #include <gmock/gmock.h>
@@ -8,9 +10,8 @@
 
 #include <random>
 
-#include "hylo/estimation/so3_manifold.h"
+#include "hylo/estimation/sliding_window/so3_manifold.h"
 #include "marginalization.h"
-#include "sliding_window_factors.h"
 
 namespace hylo::estimation {
 namespace {

@@ -9,8 +9,8 @@
 #include <random>
 
 #include "hylo/common/time.h"
-#include "hylo/estimation/ieskf.h"
-#include "hylo/estimation/sliding_window.h"
+#include "hylo/estimation/initial_uncertainty.h"
+#include "hylo/estimation/sliding_window/sliding_window.h"
 #include "hylo/sim/imu_model.h"
 #include "hylo/sim/simulator.h"
 
@@ -118,22 +118,23 @@ struct Result {
 
 Result RunSmoother(const Sequence& seq, int window_size, bool marginalize, bool use_imu = true,
                    double* max_position_error_m = nullptr) {
-  Estimator::Options options;
-  options.use_imu = use_imu;
+  EstimatorOptions options;
+  ImuOptions imu;
+  imu.enabled = use_imu;
   options.backend = Estimator::Backend::kSlidingWindow;
-  options.imu_noise.gyro_noise_density = 10 * 6.1e-5;
-  options.imu_noise.accel_noise_density = 10 * 1.4e-3;
+  imu.noise.gyro_noise_density = 10 * 6.1e-5;
+  imu.noise.accel_noise_density = 10 * 1.4e-3;
   options.sliding_window.window_size = window_size;
   options.sliding_window.marginalize = marginalize;
-  options.sliding_window.min_matches = 10;
+  options.lidar_update.min_matches = 10;
   options.sliding_window.max_iterations = 20;
   options.sliding_window.max_solver_time_s = 10.0;
-  SlidingWindow smoother(options);
+  SlidingWindow smoother(options, imu);
   const BruteForceMap map(Room(seq.center));
   const registration::PlaneMatcher matcher(map, registration::PlaneMatcherOptions{});
-  IeskfOptions init;
-  init.init_velocity_sigma_mps = 0.1;
-  smoother.Initialize(seq.start, Ieskf::InitialCovariance(init));
+  InitialUncertainty init;
+  init.velocity_sigma_mps = 0.1;
+  smoother.Initialize(seq.start, init.SlamCovariance());
   std::size_t next_imu = 0;
   double max_error = 0.0;
   for (std::size_t k = 0; k < seq.scans.size(); ++k) {

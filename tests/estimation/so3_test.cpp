@@ -1,4 +1,4 @@
-#include "hylo/estimation/lie/so3.h"
+#include "hylo/lie/so3.h"
 
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@
 // long-double power series, central differences, or the matrix algebra), at the identity, at
 // θ = 1e-9, on both sides of the series/closed-form switches, at generic angles and near π.
 
-namespace hylo::estimation::lie {
+namespace hylo::lie {
 namespace {
 
 using Vec3 = Eigen::Vector3d;
@@ -260,4 +260,4 @@ TEST(SO3, JetDerivativeOfLogIsTheRightJacobianInverse) {
 }
 
 }  // namespace
-}  // namespace hylo::estimation::lie
+}  // namespace hylo::lie

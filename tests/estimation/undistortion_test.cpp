@@ -38,6 +38,8 @@ class ConstantTwistEstimator final : public Estimator {
   bool initialized() const override { return true; }
   const NavState& state() const override { return state_; }
   StateCovariance Covariance() const override { return StateCovariance::Identity(); }
+  void TakeFinalized(std::vector<NavState>*) override {}
+  void Finish() override {}
 
  private:
   Eigen::Vector3d axis_;
@@ -57,7 +59,7 @@ LidarScan Sweep(int count) {
   scan.t_ns = kScanStartNs;
   scan.end_t_ns = kScanStartNs + kScanNs;
   for (int i = 0; i < count; ++i) {
-    registration::ScanPoint p;
+    ScanPoint p;
     p.position_lidar = (50.0 * Eigen::Vector3d(u(rng), u(rng), 0.3 * u(rng)).normalized()).cast<float>();
     p.offset_ns = static_cast<int32_t>(static_cast<int64_t>(i) * kScanNs / count);
     scan.points.push_back(p);
@@ -68,7 +70,7 @@ LidarScan Sweep(int count) {
 // Largest distance between Undistort's output and the exact end-frame position, m.
 double WorstError(const ConstantTwistEstimator& estimator, const LidarScan& scan,
                   const std::vector<int64_t>& knots) {
-  const registration::PointCloud out = Undistort(scan, estimator, knots);
+  const PointCloud out = Undistort(scan, estimator, knots);
   EXPECT_EQ(out.size(), scan.points.size());
   const lie::SE3d T_end_map = estimator.PredictAt(scan.end_t_ns).T_map_lidar().Inverse();
   double worst = 0.0;

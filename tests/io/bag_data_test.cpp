@@ -19,8 +19,8 @@
 namespace hylo::io {
 namespace {
 
-using estimation::ImuSample;
-using estimation::LidarScan;
+using hylo::ImuSample;
+using hylo::LidarScan;
 
 constexpr int64_t kStartNs = 1650000000000000000;
 
@@ -28,7 +28,7 @@ LidarScan GridScan(int64_t t_ns, int n) {
   LidarScan scan;
   scan.t_ns = t_ns;
   for (int i = 0; i < n; ++i) {
-    registration::ScanPoint p;
+    ScanPoint p;
     p.position_lidar = {0.01f * i, 5.f, -1.f};
     p.offset_ns = i * 1000;
     p.ring = static_cast<uint16_t>(i % 16);

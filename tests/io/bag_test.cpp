@@ -19,8 +19,8 @@
 namespace hylo::io {
 namespace {
 
-using estimation::ImuSample;
-using estimation::LidarScan;
+using hylo::ImuSample;
+using hylo::LidarScan;
 
 constexpr int64_t kStartNs = 1700000000000000000;
 constexpr int64_t kImuPeriodNs = 5000000;     // 200 Hz
@@ -33,7 +33,7 @@ LidarScan MakeScan(int64_t t_ns, int n, std::mt19937* rng) {
   scan.t_ns = t_ns;
   scan.end_t_ns = t_ns;
   for (int i = 0; i < n; ++i) {
-    registration::ScanPoint p;
+    ScanPoint p;
     p.position_lidar = {coord(*rng), coord(*rng), coord(*rng)};
     p.intensity = static_cast<float>(i % 256);
     p.ring = static_cast<uint16_t>(i % 32);

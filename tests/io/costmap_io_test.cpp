@@ -15,9 +15,9 @@
 namespace hylo::io {
 namespace {
 
-using mapping::CellClass;
-using mapping::GridGeometry;
-using mapping::GridMap;
+using terrain::CellClass;
+using terrain::GridGeometry;
+using terrain::GridMap;
 namespace fs = std::filesystem;
 
 std::string TempDir(const std::string& name) {
@@ -135,7 +135,7 @@ GridMap SmallCostGrid(std::vector<CellClass>* classes) {
   g.width = 3;
   g.height = 2;
   GridMap grid(g);
-  grid.AddLayer(mapping::layers::kCost, 0.f) = {0.1f, 0.6f, 1.f, NAN, 0.f, 0.9f};
+  grid.AddLayer(terrain::layers::kCost, 0.f) = {0.1f, 0.6f, 1.f, NAN, 0.f, 0.9f};
   *classes = {CellClass::kFree,    CellClass::kCost, CellClass::kLethal,
               CellClass::kUnknown, CellClass::kFree, CellClass::kCost};
   return grid;
@@ -215,9 +215,9 @@ TEST(WriteMapServer, TrinaryReadingGivesClassesAndOriginKeepsUtmDigits) {
 TEST(AsciiGrid, RoundTripWithNoDataOffsetAndUtmCorner) {
   std::vector<CellClass> classes;
   GridMap grid = SmallCostGrid(&classes);
-  grid.AddLayer(mapping::layers::kElevation, 0.f) = {0.123f, -1.5f, NAN, 2.25f, 0.f, 3.f};
+  grid.AddLayer(terrain::layers::kElevation, 0.f) = {0.123f, -1.5f, NAN, 2.25f, 0.f, 3.f};
   const std::string path = TempDir("asc") + "/elevation.asc";
-  WriteAsciiGrid(path, grid, mapping::layers::kElevation, grid.geometry().origin_world.z());
+  WriteAsciiGrid(path, grid, terrain::layers::kElevation, grid.geometry().origin_world.z());
   const GridMap back = ReadAsciiGrid(path, "z");
   const GridGeometry& g = back.geometry();
   EXPECT_EQ(g.width, 3);
@@ -226,7 +226,7 @@ TEST(AsciiGrid, RoundTripWithNoDataOffsetAndUtmCorner) {
   EXPECT_NEAR(g.CornerWorld().x(), 523400.25, 1e-6);
   EXPECT_NEAR(g.CornerWorld().y(), 4181199.5, 1e-6);
   const auto& z = back.Layer("z");
-  const auto& original = grid.Layer(mapping::layers::kElevation);
+  const auto& original = grid.Layer(terrain::layers::kElevation);
   for (std::size_t i = 0; i < z.size(); ++i) {
     if (std::isnan(original[i])) {
       EXPECT_TRUE(std::isnan(z[i]));
@@ -257,9 +257,9 @@ TEST(WriteTraversabilityFiles, WritesEveryOutputWithWorldHeights) {
   std::vector<Eigen::Vector3d> ground;
   for (int i = 0; i < 60; ++i)
     for (int j = 0; j < 60; ++j) ground.emplace_back(612000.013 + 0.05 * i, 5.2e6 + 0.05 * j, 87.5);
-  mapping::TraversabilityOptions options;
+  terrain::TraversabilityOptions options;
   options.resolution_m = 0.25;
-  const mapping::TraversabilityMap map = mapping::ComputeTraversability(ground, {}, options);
+  const terrain::TraversabilityMap map = terrain::ComputeTraversability(ground, {}, options);
   const std::string dir = TempDir("all");
   const std::vector<std::string> files = WriteTraversabilityFiles(dir, map);
   for (const std::string& f : files) EXPECT_TRUE(fs::exists(f)) << f;

@@ -14,8 +14,8 @@
 namespace hylo::io {
 namespace {
 
-using estimation::LidarScan;
-using registration::ScanPoint;
+using hylo::LidarScan;
+using hylo::ScanPoint;
 
 constexpr int64_t kStampNs = 1600000000000000000;
 

@@ -15,8 +15,8 @@
 namespace hylo::io {
 namespace {
 
-using estimation::LidarScan;
-using registration::ScanPoint;
+using hylo::LidarScan;
+using hylo::ScanPoint;
 
 constexpr int64_t kStartNs = 1700000000123456789;  // a realistic epoch stamp
 

@@ -46,7 +46,7 @@ TEST(ScanFolder, SortsByNumberAndStampsFromTum) {
   ASSERT_EQ(messages.size(), 3u);
   const double tags[3] = {1, 2, 10};
   for (int i = 0; i < 3; ++i) {
-    const estimation::LidarScan& scan = messages[i].scan;
+    const LidarScan& scan = messages[i].scan;
     EXPECT_EQ(messages[i].kind, LogMessage::Kind::kScan);
     EXPECT_EQ(scan.points[0].position_lidar.x(), tags[i]);
     EXPECT_EQ(scan.t_ns, (100 + static_cast<int64_t>(tags[i])) * 1000000000 + 500000000);

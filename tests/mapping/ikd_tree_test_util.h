@@ -14,10 +14,10 @@
 
 namespace hylo::mapping::testing {
 
+using hylo::PointCloud;
 using registration::BruteForceSearch;
 using registration::Neighbor;
 using registration::NeighborSearch;
-using registration::PointCloud;
 
 inline bool LexLess(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
   return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);

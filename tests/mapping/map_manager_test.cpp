@@ -11,7 +11,7 @@
 namespace hylo::mapping {
 namespace {
 
-using registration::PointCloud;
+using hylo::PointCloud;
 
 PointCloud RandomCloud(int n, const Eigen::Vector3f& centre, float half, std::mt19937* rng) {
   std::uniform_real_distribution<float> u(-half, half);

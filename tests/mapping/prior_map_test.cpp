@@ -64,7 +64,7 @@ TEST(PriorMap, DownsamplesToTheResolutionAndCountsNaN) {
   EXPECT_GE(map.num_kept, 1600u);
   EXPECT_LE(map.num_kept, 41u * 41u);
   // At most one point per voxel, and every kept point is an input point.
-  const registration::PointCloud again = registration::UniformSample(map.points_local, 0.5f);
+  const PointCloud again = registration::UniformSample(map.points_local, 0.5f);
   EXPECT_EQ(again.size(), map.points_local.size());
   for (const Eigen::Vector3f& p : map.points_local) ASSERT_TRUE(p.allFinite());
 }

@@ -1,4 +1,4 @@
-// The ICP initializer on the simulated substation (issue 6, "must show"): the prior map is
+// The ICP initializer on the simulated substation : the prior map is
 // the site's noise-free reference cloud as session A saw it; the scan is the first 10 scans
 // of session B at rest (the site has changed: a van and a container added, a fence segment
 // removed, a cable drum moved), in the IMU frame through the simulator's extrinsic.
@@ -16,14 +16,14 @@
 #include "hylo/mapping/ikd_tree.h"
 #include "hylo/mapping/prior_map.h"
 #include "hylo/registration/icp_initializer.h"
-#include "hylo/sim/reference_outputs.h"
 #include "hylo/sim/simulator.h"
+#include "hylo/sim_io/reference_outputs.h"
 
 namespace hylo::registration {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-constexpr int kStaticScans = 10;  // the issue's default N
+constexpr int kStaticScans = 10;  // the default localization.init_scans
 
 struct SiteScene {
   std::unique_ptr<mapping::IkdTree> map;  // local frame of the prior map's origin
@@ -58,7 +58,7 @@ SiteScene BuildScene() {
   const sim::SessionSimulator session_b(options, site, sim::SessionId::kB);
   const Eigen::Isometry3d& T_imu_lidar = options.lidar.T_imu_lidar;
   for (int i = 0; i < kStaticScans; ++i) {
-    const estimation::LidarScan scan = session_b.lidar().Scan(i, session_b.start_ns());
+    const LidarScan scan = session_b.lidar().Scan(i, session_b.start_ns());
     for (const ScanPoint& p : scan.points) {
       scene.scan_imu.push_back((T_imu_lidar * p.position_lidar.cast<double>()).cast<float>());
     }
@@ -113,7 +113,8 @@ TEST_F(IcpInitializerSiteTest, GridOfPerturbedGuessesIsAcceptedAndCorrect) {
   double max_t = 0, max_r = 0, total_s = 0, max_s = 0;
   for (int y = 0; y < 5; ++y) {
     for (int k = 0; k < 10; ++k) {
-      // Radii 1 and 2 m (the issue's bound) at 5 headings each; z +-0.2 m, tilt +-0.5 deg.
+      // Radii 1 and 2 m (the guess errors the initializer must accept) at 5 headings each; z +-0.2
+      // m, tilt +-0.5 deg.
       const double radius = k < 5 ? 1.0 : 2.0;
       const double heading = (72.0 * k + 36.0 * y) * kDeg;
       const double sign = (k + y) % 2 == 0 ? 1.0 : -1.0;

@@ -23,11 +23,11 @@ BackendRow Ieskf() {
   return row;  // rpe_rmse_m left unmeasured
 }
 
-BackendRow NotBuilt() {
+BackendRow FailedRun() {
   BackendRow row;
   row.backend = "sliding_window";
-  row.status = RowStatus::kNotAvailable;
-  row.note = "not built into this executable";
+  row.status = RowStatus::kFailed;
+  row.note = "session_b.bag: ICP initializer rejected the start";
   row.ate_rmse_m = 1.0;  // must not be shown for a row that is not ok
   return row;
 }
@@ -51,7 +51,7 @@ TEST(FormatFigureTest, RoundsAndMarksMissingValues) {
 
 TEST(FormatTableTest, MarkdownHasOneRowPerBackendAndTheNotes) {
   const std::vector<std::string> lines =
-      Lines(FormatTable({Ieskf(), NotBuilt()}, TableStyle::kMarkdown));
+      Lines(FormatTable({Ieskf(), FailedRun()}, TableStyle::kMarkdown));
   ASSERT_GE(lines.size(), 6u);
   EXPECT_EQ(lines[0],
             "| back-end | c2c mean [m] | c2c std [m] | ATE RMSE [m] | RPE RMSE [m] | "
@@ -60,15 +60,16 @@ TEST(FormatTableTest, MarkdownHasOneRowPerBackendAndTheNotes) {
   EXPECT_EQ(lines[2],
             "| ieskf | 0.0312 | 0.0200 | 0.0123 | n/a | 8.23 | 13.88 | n/a | 151.3 | 240 |");
   EXPECT_EQ(lines[3],
-            "| sliding_window | not available | not available | not available | not available | "
-            "not available | not available | not available | not available | not available |");
+            "| sliding_window | failed | failed | failed | failed | failed | failed | failed | "
+            "failed | failed |");
   EXPECT_EQ(lines[4], "");
-  EXPECT_EQ(lines[5], "- sliding_window (not available): not built into this executable");
+  EXPECT_EQ(lines[5],
+            "- sliding_window (failed): session_b.bag: ICP initializer rejected the start");
 }
 
 TEST(FormatTableTest, TerminalColumnsLineUp) {
   const std::vector<std::string> lines =
-      Lines(FormatTable({Ieskf(), NotBuilt()}, TableStyle::kTerminal));
+      Lines(FormatTable({Ieskf(), FailedRun()}, TableStyle::kTerminal));
   ASSERT_GE(lines.size(), 5u);
   // Header, rule and both rows have the same width; the rule spans it.
   EXPECT_EQ(lines[0].size(), lines[1].size());
@@ -79,11 +80,11 @@ TEST(FormatTableTest, TerminalColumnsLineUp) {
   const std::size_t ate_end = lines[0].find("ATE RMSE [m]") + std::string("ATE RMSE [m]").size();
   EXPECT_EQ(lines[2].find("0.0123") + 6, ate_end);
   EXPECT_EQ(lines[2].rfind("ieskf", 0), 0u);
-  EXPECT_NE(lines[4].find("not built into this executable"), std::string::npos);
+  EXPECT_NE(lines[4].find("ICP initializer rejected the start"), std::string::npos);
 }
 
 TEST(TableToJsonTest, FiguresUnderUnitKeysAndNullWhenMissing) {
-  const io::Json json = TableToJson({Ieskf(), NotBuilt()});
+  const io::Json json = TableToJson({Ieskf(), FailedRun()});
   ASSERT_TRUE(json.IsArray());
   ASSERT_EQ(json.AsArray()->size(), 2u);
   const io::Json& ieskf = json.AsArray()->at(0);
@@ -93,8 +94,8 @@ TEST(TableToJsonTest, FiguresUnderUnitKeysAndNullWhenMissing) {
   EXPECT_DOUBLE_EQ(ieskf.Find("peak_memory_mb")->AsNumber(), 151.26);
   EXPECT_TRUE(ieskf.Find("rpe_rmse_m")->IsNull());
   const io::Json& sw = json.AsArray()->at(1);
-  EXPECT_EQ(*sw.Find("status")->AsString(), "not available");
-  EXPECT_EQ(*sw.Find("note")->AsString(), "not built into this executable");
+  EXPECT_EQ(*sw.Find("status")->AsString(), "failed");
+  EXPECT_EQ(*sw.Find("note")->AsString(), "session_b.bag: ICP initializer rejected the start");
 }
 
 TEST(FormatTableTest, EmptyTableStillHasItsHeader) {

@@ -13,24 +13,24 @@
 namespace hylo::rosnode {
 namespace {
 
-using mapping::CellClass;
+using terrain::CellClass;
 
 struct Fixture {
-  mapping::GridMap grid;
+  terrain::GridMap grid;
   std::vector<CellClass> classes;
 };
 
 // 4 × 3 cells: lethal at (col 0, row 0) = the lowest-y row, unknown at (3, 2), a costly
 // cell at (1, 1), everything else free.
 Fixture MakeGrid() {
-  mapping::GridGeometry g;
+  terrain::GridGeometry g;
   g.origin_world = Eigen::Vector3d(1000.0, 2000.0, 50.0);
   g.corner_local = Eigen::Vector2d(-1.0, -0.5);
   g.resolution_m = 0.25;
   g.width = 4;
   g.height = 3;
-  Fixture f{mapping::GridMap(g), std::vector<CellClass>(g.NumCells(), CellClass::kFree)};
-  std::vector<float>& cost = f.grid.AddLayer(mapping::layers::kCost, 0.f);
+  Fixture f{terrain::GridMap(g), std::vector<CellClass>(g.NumCells(), CellClass::kFree)};
+  std::vector<float>& cost = f.grid.AddLayer(terrain::layers::kCost, 0.f);
   f.classes[g.Index(0, 0)] = CellClass::kLethal;
   cost[g.Index(0, 0)] = 1.f;
   f.classes[g.Index(3, 2)] = CellClass::kUnknown;

@@ -6,7 +6,7 @@
 
 #include <random>
 
-#include "hylo/estimation/lie/so3.h"
+#include "hylo/lie/so3.h"
 
 namespace hylo::rosnode {
 namespace {
@@ -68,10 +68,10 @@ TEST(Frames, PoseCovarianceMatchesMonteCarloInTheParentAxes) {
     Eigen::Matrix<double, 6, 1> z;
     for (int k = 0; k < 6; ++k) z(k) = n(rng);
     const Eigen::Matrix<double, 6, 1> delta = L * z;
-    const Eigen::Matrix3d R_perturbed = R * estimation::lie::SO3d::Exp(delta.tail<3>()).Matrix();
+    const Eigen::Matrix3d R_perturbed = R * lie::SO3d::Exp(delta.tail<3>()).Matrix();
     Eigen::Matrix<double, 6, 1> e;
     e.head<3>() = delta.head<3>();
-    e.tail<3>() = estimation::lie::SO3d::FromMatrix(R_perturbed * R.transpose()).Log();
+    e.tail<3>() = lie::SO3d::FromMatrix(R_perturbed * R.transpose()).Log();
     sample_cov += e * e.transpose() / kSamples;
   }
   const double scale = sigma.diagonal().maxCoeff();

@@ -1,4 +1,4 @@
-// The health topic's JSON: the state names of the issue, counters, NaN written as null.
+// The health topic's JSON: the state names the node documents, counters, NaN written as null.
 
 #include "health.h"
 

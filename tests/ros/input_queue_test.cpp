@@ -12,15 +12,15 @@ namespace {
 
 using std::chrono::milliseconds;
 
-estimation::LidarScan Scan(int64_t t_ns) {
-  estimation::LidarScan scan;
+LidarScan Scan(int64_t t_ns) {
+  LidarScan scan;
   scan.t_ns = t_ns;
   scan.end_t_ns = t_ns + 100;
   return scan;
 }
 
-estimation::ImuSample Imu(int64_t t_ns) {
-  estimation::ImuSample sample;
+ImuSample Imu(int64_t t_ns) {
+  ImuSample sample;
   sample.t_ns = t_ns;
   return sample;
 }
@@ -40,8 +40,8 @@ TEST(InputQueue, OutOfOrderAndDuplicateMessagesAreCountedAndDropped) {
   EXPECT_TRUE(queue.PushImu(Imu(10)));
   EXPECT_FALSE(queue.PushImu(Imu(5)));
   EXPECT_TRUE(queue.PushImu(Imu(20)));
-  std::vector<estimation::ImuSample> imu;
-  std::vector<estimation::LidarScan> scans;
+  std::vector<ImuSample> imu;
+  std::vector<LidarScan> scans;
   ASSERT_TRUE(queue.Pop(&imu, &scans, milliseconds(0)));
   ASSERT_EQ(scans.size(), 2u);
   EXPECT_EQ(scans[0].t_ns, 100);
@@ -63,8 +63,8 @@ TEST(InputQueue, FullQueueDropsTheOldestAndStaysBounded) {
   InputQueue queue(options);
   for (int i = 1; i <= 8; ++i) queue.PushScan(Scan(i * 100));
   for (int i = 1; i <= 25; ++i) queue.PushImu(Imu(i));
-  std::vector<estimation::ImuSample> imu;
-  std::vector<estimation::LidarScan> scans;
+  std::vector<ImuSample> imu;
+  std::vector<LidarScan> scans;
   ASSERT_TRUE(queue.Pop(&imu, &scans, milliseconds(0)));
   ASSERT_EQ(scans.size(), 3u);
   EXPECT_EQ(scans.front().t_ns, 600);  // the newest three survive
@@ -87,8 +87,8 @@ TEST(InputQueue, PopWakesOnAScanFromAnotherThreadAndEndsAfterClose) {
     }
     queue.Close();
   });
-  std::vector<estimation::ImuSample> imu;
-  std::vector<estimation::LidarScan> scans;
+  std::vector<ImuSample> imu;
+  std::vector<LidarScan> scans;
   while (queue.Pop(&imu, &scans, milliseconds(50))) {
   }
   producer.join();
@@ -104,8 +104,8 @@ TEST(InputQueue, ScansWaitForTheImuAndImuWaitsForScans) {
   InputQueueOptions options;
   options.max_imu = 50;
   InputQueue queue(options);
-  std::vector<estimation::ImuSample> imu;
-  std::vector<estimation::LidarScan> scans;
+  std::vector<ImuSample> imu;
+  std::vector<LidarScan> scans;
   queue.PushScan(Scan(1000));  // ends at 1100
   for (int t = 0; t <= 1000; t += 100) queue.PushImu(Imu(t));
   queue.Pop(&imu, &scans, milliseconds(0));

@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <thread>
 
+#include "hylo/io/ros_bridge.h"
 #include "hylo/io/trajectory_io.h"
 #include "ros_messages.h"
 
@@ -132,22 +133,22 @@ RosGraph::~RosGraph() {
   roscore_.reset();
 }
 
-std::vector<estimation::TimedPose> PosesOf(const std::vector<nav_msgs::Odometry>& odometry) {
-  std::vector<estimation::TimedPose> poses;
+std::vector<evaluation::TimedPose> PosesOf(const std::vector<nav_msgs::Odometry>& odometry) {
+  std::vector<evaluation::TimedPose> poses;
   for (const nav_msgs::Odometry& odom : odometry) {
-    estimation::TimedPose pose;
-    pose.t_ns = rosnode::FromRosTime(odom.header.stamp);
+    evaluation::TimedPose pose;
+    pose.t_ns = io::ros_bridge::FromRosTime(odom.header.stamp);
     pose.T_world_body = rosnode::FromRos(odom.pose.pose);
     poses.push_back(pose);
   }
   return poses;
 }
 
-std::vector<estimation::TimedPose> ReadTruth(const std::string& path,
+std::vector<evaluation::TimedPose> ReadTruth(const std::string& path,
                                              const Eigen::Vector3d& offset_world) {
-  std::vector<estimation::TimedPose> truth;
+  std::vector<evaluation::TimedPose> truth;
   for (const io::StampedPose& p : io::ReadTum(path)) {
-    estimation::TimedPose pose{p.t_ns, p.T_world_body()};
+    evaluation::TimedPose pose{p.t_ns, p.T_world_body()};
     pose.T_world_body.translation() += offset_world;
     truth.push_back(pose);
   }

@@ -12,14 +12,14 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include <chrono>
-#include <thread>
 #include <memory>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "child_process.h"
-#include "hylo/estimation/trajectory_metrics.h"
+#include "hylo/evaluation/trajectory_metrics.h"
 
 namespace hylo::testing {
 
@@ -69,9 +69,9 @@ class RosGraph {
 };
 
 /// The odometry as timed poses (map frame → base), for trajectory_metrics.
-std::vector<estimation::TimedPose> PosesOf(const std::vector<nav_msgs::Odometry>& odometry);
+std::vector<evaluation::TimedPose> PosesOf(const std::vector<nav_msgs::Odometry>& odometry);
 /// A TUM file as timed poses, each moved by `offset_world` (m).
-std::vector<estimation::TimedPose> ReadTruth(const std::string& path,
+std::vector<evaluation::TimedPose> ReadTruth(const std::string& path,
                                              const Eigen::Vector3d& offset_world);
 
 /// Polls `done` every 50 ms until true or `timeout`; false on timeout.

@@ -5,6 +5,7 @@
 // (the published map frame is the file's), and a relocalization requested through the
 // service mid-run. Skipped, visibly, when roscore or rosbag are missing.
 
+#include <gtest/gtest.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <nav_msgs/SetMap.h>
 #include <ros/topic.h>
@@ -12,14 +13,13 @@
 #include <sensor_msgs/PointCloud2.h>
 #include <std_srvs/Trigger.h>
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/costmap_io.h"
+#include "hylo/io/ros_bridge.h"
 #include "ros_graph.h"
 #include "ros_messages.h"
 #include "test_data.h"
@@ -118,7 +118,7 @@ TEST_F(RosNodeIntegration, SlamOdometryMatchesTruthAndTfTreeIsComplete) {
       ASSERT_TRUE(std::isfinite(odom.twist.covariance[7 * i])) << "twist covariance " << i;
     }
   }
-  const estimation::AteResult ate = estimation::ComputeAte(
+  const evaluation::AteResult ate = evaluation::ComputeAte(
       hylo::testing::PosesOf(c.odometry),
       hylo::testing::ReadTruth(dir_ + "/sim/session_a_truth.tum", Eigen::Vector3d::Zero()));
   ASSERT_TRUE(ate.ok) << ate.message;
@@ -146,15 +146,15 @@ std::string MatrixText(const Eigen::Isometry3d& T) {
 
 /// A 20 × 10 costmap at 0.5 m in the shifted frame, one lethal cell at (col 3, row 2).
 void WriteCostmap(const std::string& yaml, const Eigen::Vector3d& offset) {
-  mapping::GridGeometry g;
+  terrain::GridGeometry g;
   g.origin_world = offset;
   g.resolution_m = 0.5;
   g.width = 20;
   g.height = 10;
-  mapping::GridMap grid(g);
-  grid.AddLayer(mapping::layers::kCost, 0.f)[g.Index(3, 2)] = 1.f;
-  std::vector<mapping::CellClass> classes(g.NumCells(), mapping::CellClass::kFree);
-  classes[g.Index(3, 2)] = mapping::CellClass::kLethal;
+  terrain::GridMap grid(g);
+  grid.AddLayer(terrain::layers::kCost, 0.f)[g.Index(3, 2)] = 1.f;
+  std::vector<terrain::CellClass> classes(g.NumCells(), terrain::CellClass::kFree);
+  classes[g.Index(3, 2)] = terrain::CellClass::kLethal;
   io::WriteMapServer(yaml, grid, classes);
 }
 
@@ -171,7 +171,7 @@ TEST_F(RosNodeIntegration, LocalizesInAShiftedPriorMapAndRelocalizesOnRequest) {
   io::CloudFile map = io::ReadCloud(dir_ + "/sim/site_reference.pcd");
   for (Eigen::Vector3d& p : map.positions) p += offset;
   io::WriteCloud(dir_ + "/prior.pcd", map);
-  const std::vector<estimation::TimedPose> truth =
+  const std::vector<evaluation::TimedPose> truth =
       hylo::testing::ReadTruth(dir_ + "/sim/session_a_truth.tum", offset);
   const Eigen::Isometry3d guess =
       Perturbed(truth.front().T_world_body, Eigen::Vector3d(0.4, -0.3, 0.0), 4.0 * M_PI / 180);
@@ -210,8 +210,8 @@ TEST_F(RosNodeIntegration, LocalizesInAShiftedPriorMapAndRelocalizesOnRequest) {
   Eigen::Isometry3d now;
   {
     std::lock_guard<std::mutex> lock(c.mutex);
-    const int64_t t_ns = FromRosTime(c.odometry.back().header.stamp);
-    ASSERT_TRUE(estimation::InterpolatePose(truth, t_ns, &now));
+    const int64_t t_ns = io::ros_bridge::FromRosTime(c.odometry.back().header.stamp);
+    ASSERT_TRUE(evaluation::InterpolatePose(truth, t_ns, &now));
   }
   nav_msgs::SetMap relocalize;
   relocalize.request.initial_pose.header.frame_id = "map";
@@ -230,10 +230,10 @@ TEST_F(RosNodeIntegration, LocalizesInAShiftedPriorMapAndRelocalizesOnRequest) {
 
   std::lock_guard<std::mutex> lock(c.mutex);
   ASSERT_GE(c.odometry.size(), 140u) << graph_->NodeLog();
-  estimation::AteOptions absolute;
-  absolute.alignment = estimation::Alignment::kNone;
-  const estimation::AteResult ate =
-      estimation::ComputeAte(hylo::testing::PosesOf(c.odometry), truth, absolute);
+  evaluation::AteOptions absolute;
+  absolute.alignment = evaluation::Alignment::kNone;
+  const evaluation::AteResult ate =
+      evaluation::ComputeAte(hylo::testing::PosesOf(c.odometry), truth, absolute);
   ASSERT_TRUE(ate.ok) << ate.message;
   std::printf("[ros localization] %zu odometry messages, error in the map frame (no alignment) "
               "rmse %.4f m, max %.4f m, rot rmse %.3f deg\n", c.odometry.size(), ate.rmse_m,

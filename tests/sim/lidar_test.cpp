@@ -33,7 +33,7 @@ TEST_F(LidarSession, PerPointTimesLieInsideTheScanPeriod) {
     const SessionSimulator sim(options, *site_, SessionId::kA);
     const int64_t period = sim.lidar().period_ns();
     for (const int index : {0, 45, 79}) {
-      const estimation::LidarScan scan = sim.lidar().Scan(index, sim.start_ns());
+      const LidarScan scan = sim.lidar().Scan(index, sim.start_ns());
       ASSERT_GT(scan.points.size(), 1000u);
       EXPECT_EQ(scan.t_ns, sim.start_ns() + index * period);
       for (const auto& p : scan.points) {
@@ -60,7 +60,7 @@ TEST_F(LidarSession, ReturnsAreExplainedByTheTruePoseAtTheirTime) {
     double max_along = 0.0, max_across = 0.0;
     for (const int index : {50, 70}) {  // the vehicle moves after 4.2 s
       std::vector<ReturnTruth> truth;
-      const estimation::LidarScan scan = sim.lidar().Scan(index, sim.start_ns(), &truth);
+      const LidarScan scan = sim.lidar().Scan(index, sim.start_ns(), &truth);
       ASSERT_EQ(truth.size(), scan.points.size());
       for (size_t i = 0; i < truth.size(); ++i) {
         const auto& p = scan.points[i];

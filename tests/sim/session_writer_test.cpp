@@ -1,6 +1,6 @@
 // Files: same seed -> the same bytes (bag, truth, manifest, reference cloud, slope grid);
 // the bag reads back with the rates and the per-point time field; the truth file matches.
-#include "hylo/sim/session_writer.h"
+#include "hylo/sim_io/session_writer.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/log_reader.h"
-#include "hylo/sim/reference_outputs.h"
+#include "hylo/sim_io/reference_outputs.h"
 
 namespace hylo::sim {
 namespace {

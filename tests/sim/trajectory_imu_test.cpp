@@ -1,5 +1,5 @@
 // Ground truth consistency: integrating the noise-free IMU reproduces the trajectory; the
-// vehicle rests at the start, keeps its speed in the range and hits nothing.
+// vehicle rests at the start, keeps its speed in the configured range and hits nothing.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -43,12 +43,12 @@ TEST_P(GroundTruth, IntegratingNoiseFreeImuReproducesTheTrajectory) {
   KinematicState s = traj_.StateAt(t_begin);
   Eigen::Matrix3d R = s.R_map_imu;
   Eigen::Vector3d p = s.position_map, v = s.velocity_map;
-  estimation::ImuSample prev = TrueImuSample(s, g, t_begin);
+  ImuSample prev = TrueImuSample(s, g, t_begin);
   const Eigen::Vector3d gravity(0, 0, -g);
   double max_position_error = 0.0, max_angle_error = 0.0;
   for (int64_t t = t_begin + dt_ns; t <= t_end; t += dt_ns) {
     const KinematicState truth = traj_.StateAt(t);
-    const estimation::ImuSample cur = TrueImuSample(truth, g, t);
+    const ImuSample cur = TrueImuSample(truth, g, t);
     const Eigen::Matrix3d R_next = R * Exp(0.5 * (prev.gyro_imu + cur.gyro_imu) * dt);
     const Eigen::Vector3d a0 = R * prev.accel_imu + gravity;
     const Eigen::Vector3d a1 = R_next * cur.accel_imu + gravity;
@@ -73,7 +73,7 @@ TEST_P(GroundTruth, StandsStillThenDrivesWithinTheSpeedRange) {
     ASSERT_LT(s.velocity_map.norm(), 1e-12);
     ASSERT_LT(s.omega_imu.norm(), 1e-12);
     ASSERT_LT((s.position_map - start.position_map).norm(), 1e-12);
-    const estimation::ImuSample imu = TrueImuSample(s, 9.81, t);
+    const ImuSample imu = TrueImuSample(s, 9.81, t);
     ASSERT_NEAR(imu.accel_imu.norm(), 9.81, 1e-9);  // at rest: reads +g upward
   }
   double max_speed = 0.0;

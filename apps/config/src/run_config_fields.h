@@ -3,10 +3,34 @@
 // a field added here is parsed, validated against unknown keys and saved with every run.
 // Visitor interface: v(key, field) for a value, v.Section(key, struct) for a nested map,
 // v.OptionalSection(key, struct, enabled) for a map that may be the scalar `none`.
+// Each YAML section maps onto one library options struct (plus, for a few sections, an
+// app-level struct beside it): the key names are the structs' field names.
+
+#include <string>
 
 #include "hylo/config/run_config.h"
 
 namespace hylo::config {
+
+/// `imu:`: the log's stream and the estimator's sensor model.
+struct ImuSection {
+  ImuStream& stream;
+  estimation::ImuOptions& options;
+};
+/// `localization:`: the start pose given in the file, and the supervisor's settings.
+struct LocalizationSection {
+  std::string& initial_guess;
+  estimation::LocalizationOptions& options;
+};
+/// `output:`: what the pipeline registers for dense maps, and the frame names.
+struct OutputSection {
+  estimation::PipelineOutputOptions& pipeline;
+  OutputFrames& frames;
+};
+
+/// Keys that moved or went away: the message an old configuration gets instead of a bare
+/// "unknown key" (nullptr for any other key).
+const char* MovedKeyHint(const std::string& key_path);
 
 template <class V>
 void VisitFields(V& v, estimation::ImuNoise& noise) {
@@ -17,21 +41,18 @@ void VisitFields(V& v, estimation::ImuNoise& noise) {
 }
 
 template <class V>
-void VisitFields(V& v, LidarConfig& lidar) {
+void VisitFields(V& v, LidarStream& lidar) {
   v("topic", lidar.topic);
   v("time_convention", lidar.time_convention);
-  v("min_range_m", lidar.min_range_m);
-  v("max_range_m", lidar.max_range_m);
-  v("scan_period_s", lidar.scan_period_s);
 }
 
 template <class V>
-void VisitFields(V& v, ImuConfig& imu) {
-  v("topic", imu.topic);
-  v("rate_hz", imu.rate_hz);
-  v("gravity_mps2", imu.gravity_mps2);
-  v("accel_scale", imu.accel_scale);
-  v.Section("noise", imu.noise);
+void VisitFields(V& v, ImuSection& imu) {
+  v("topic", imu.stream.topic);
+  v("accel_scale", imu.stream.accel_scale);
+  v("rate_hz", imu.options.rate_hz);
+  v("gravity_mps2", imu.options.gravity_mps2);
+  v.Section("noise", imu.options.noise);
 }
 
 template <class V>
@@ -42,6 +63,8 @@ void VisitFields(V& v, TransformConfig& transform) {
 
 template <class V>
 void VisitFields(V& v, estimation::PreprocessOptions& o) {
+  v("min_range_m", o.min_range_m);
+  v("max_range_m", o.max_range_m);
   v("scan_voxel_m", o.scan_voxel_m);
   v("point_stride", o.point_stride);
   v("max_point_offset_s", o.max_point_offset_s);
@@ -59,27 +82,40 @@ void VisitFields(V& v, estimation::ImuInitializerOptions& o) {
 }
 
 template <class V>
+void VisitFields(V& v, estimation::InitialUncertainty& o) {
+  v("rotation_sigma_rad", o.rotation_sigma_rad);
+  v("velocity_sigma_mps", o.velocity_sigma_mps);
+  v("gyro_bias_sigma_radps", o.gyro_bias_sigma_radps);
+  v("accel_bias_sigma_mps2", o.accel_bias_sigma_mps2);
+  v("gravity_sigma_mps2", o.gravity_sigma_mps2);
+  v("extrinsic_rotation_sigma_rad", o.extrinsic_rotation_sigma_rad);
+  v("extrinsic_translation_sigma_m", o.extrinsic_translation_sigma_m);
+  v("localized_position_sigma_m", o.localized_position_sigma_m);
+}
+
+template <class V>
+void VisitFields(V& v, estimation::LidarUpdateOptions& o) {
+  v("lidar_noise_m", o.lidar_noise_m);
+  v("min_matches", o.min_matches);
+  v("min_translation_information", o.min_translation_information);
+  v("min_rotation_information", o.min_rotation_information);
+}
+
+template <class V>
+void VisitFields(V& v, estimation::NoImuOptions& o) {
+  v("cv_translation_noise", o.cv_translation_noise);
+  v("cv_rotation_noise", o.cv_rotation_noise);
+  v("yaw_search_deg", o.yaw_search_deg);
+  v("yaw_search_step_deg", o.yaw_search_step_deg);
+}
+
+template <class V>
 void VisitFields(V& v, estimation::IeskfOptions& o) {
   v("max_iterations", o.max_iterations);
   v("convergence_rotation_rad", o.convergence_rotation_rad);
   v("convergence_translation_m", o.convergence_translation_m);
   v("rematch_threshold", o.rematch_threshold);
-  v("lidar_noise_m", o.lidar_noise_m);
-  v("min_matches", o.min_matches);
   v("online_extrinsic", o.online_extrinsic);
-  v("min_translation_information", o.min_translation_information);
-  v("min_rotation_information", o.min_rotation_information);
-  v("init_rotation_sigma_rad", o.init_rotation_sigma_rad);
-  v("init_velocity_sigma_mps", o.init_velocity_sigma_mps);
-  v("init_gyro_bias_sigma_radps", o.init_gyro_bias_sigma_radps);
-  v("init_accel_bias_sigma_mps2", o.init_accel_bias_sigma_mps2);
-  v("init_gravity_sigma_mps2", o.init_gravity_sigma_mps2);
-  v("init_extrinsic_rotation_sigma_rad", o.init_extrinsic_rotation_sigma_rad);
-  v("init_extrinsic_translation_sigma_m", o.init_extrinsic_translation_sigma_m);
-  v("cv_translation_noise", o.cv_translation_noise);
-  v("cv_rotation_noise", o.cv_rotation_noise);
-  v("no_imu_yaw_search_deg", o.no_imu_yaw_search_deg);
-  v("no_imu_yaw_search_step_deg", o.no_imu_yaw_search_step_deg);
 }
 
 template <class V>
@@ -91,15 +127,7 @@ void VisitFields(V& v, estimation::SlidingWindowOptions& o) {
   v("association_rounds", o.association_rounds);
   v("robust_loss", o.robust_loss);
   v("robust_loss_scale_m", o.robust_loss_scale_m);
-  v("lidar_noise_m", o.lidar_noise_m);
-  v("min_matches", o.min_matches);
   v("marginalize", o.marginalize);
-  v("min_translation_information", o.min_translation_information);
-  v("min_rotation_information", o.min_rotation_information);
-  v("cv_translation_noise", o.cv_translation_noise);
-  v("cv_rotation_noise", o.cv_rotation_noise);
-  v("no_imu_yaw_search_deg", o.no_imu_yaw_search_deg);
-  v("no_imu_yaw_search_step_deg", o.no_imu_yaw_search_step_deg);
 }
 
 template <class V>
@@ -111,12 +139,16 @@ void VisitFields(V& v, registration::PlaneMatcherOptions& o) {
 }
 
 template <class V>
-void VisitFields(V& v, MapConfig& o) {
+void VisitFields(V& v, mapping::MapManagerOptions& o) {
   v("voxel_size_m", o.voxel_size_m);
   v("window_size_m", o.window_size_m);
   v("window_margin_m", o.window_margin_m);
-  v("prior_resolution_m", o.prior_resolution_m);
-  v("update_after_s", o.update_after_s);
+}
+
+template <class V>
+void VisitFields(V& v, mapping::PriorMapOptions& o) {
+  v("resolution_m", o.resolution_m);
+  v("origin_granularity_m", o.origin_granularity_m);
 }
 
 template <class V>
@@ -139,13 +171,13 @@ void VisitFields(V& v, registration::IcpInitializerOptions& o) {
 }
 
 template <class V>
-void VisitFields(V& v, LocalizationConfig& c) {
+void VisitFields(V& v, LocalizationSection& c) {
   estimation::LocalizationOptions& o = c.options;
   v("initial_guess", c.initial_guess);
   v("init_scans", o.init_scans);
+  v("update_after_s", o.update_after_s);
   v("health_inlier_distance_m", o.health_inlier_distance_m);
   v("health_max_range_m", o.health_max_range_m);
-  v("health_max_points", o.health_max_points);
   v("min_inlier_ratio", o.min_inlier_ratio);
   v("min_matches", o.min_matches);
   v("lost_after_scans", o.lost_after_scans);
@@ -154,27 +186,35 @@ void VisitFields(V& v, LocalizationConfig& c) {
 }
 
 template <class V>
-void VisitFields(V& v, OutputConfig& output) {
-  v("dense_map_voxel_m", output.dense_map_voxel_m);
-  v("map_frame", output.map_frame);
-  v("odom_frame", output.odom_frame);
-  v("base_frame", output.base_frame);
+void VisitFields(V& v, OutputSection& output) {
+  v("dense_map_voxel_m", output.pipeline.dense_map_voxel_m);
+  v("map_frame", output.frames.map_frame);
+  v("odom_frame", output.frames.odom_frame);
+  v("base_frame", output.frames.base_frame);
 }
 
 template <class V>
 void VisitFields(V& v, RunConfig& run) {
-  v("backend", run.backend);
+  estimation::OdometryPipelineOptions& p = run.pipeline;
+  ImuSection imu{run.imu, p.imu};
+  LocalizationSection localization{run.initial_guess, p.localization};
+  OutputSection output{p.output, run.output};
+  v("backend", p.estimator.backend);
   v.Section("lidar", run.lidar);
-  v.OptionalSection("imu", run.imu, run.imu.enabled);
+  v.OptionalSection("imu", imu, p.imu.enabled);
   v.Section("T_imu_lidar", run.T_imu_lidar);
-  v.Section("preprocess", run.preprocess);
-  v.Section("init", run.init);
-  v.Section("ieskf", run.ieskf);
-  v.Section("sliding_window", run.sliding_window);
-  v.Section("planes", run.planes);
-  v.Section("map", run.map);
-  v.Section("localization", run.localization);
-  v.Section("output", run.output);
+  v.Section("preprocess", p.preprocess);
+  v.Section("init", p.init);
+  v.Section("initial_uncertainty", p.initial_uncertainty);
+  v.Section("lidar_update", p.estimator.lidar_update);
+  v.Section("no_imu", p.estimator.no_imu);
+  v.Section("ieskf", p.estimator.ieskf);
+  v.Section("sliding_window", p.estimator.sliding_window);
+  v.Section("planes", p.planes);
+  v.Section("map", p.map);
+  v.Section("prior_map", run.prior_map);
+  v.Section("localization", localization);
+  v.Section("output", output);
 }
 
 }  // namespace hylo::config

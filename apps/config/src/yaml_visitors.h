@@ -60,6 +60,12 @@ class YamlReadVisitor {
   void Convert(const YAML::Node& node, const std::string& key_path, Eigen::Vector3d* value) const;
   void Convert(const YAML::Node& node, const std::string& key_path,
                io::PointTimeConvention* value) const;
+  void Convert(const YAML::Node& node, const std::string& key_path,
+               estimation::Estimator::Backend* value) const;
+  void Convert(const YAML::Node& node, const std::string& key_path,
+               estimation::SlidingWindowOptions::LinearSolver* value) const;
+  void Convert(const YAML::Node& node, const std::string& key_path,
+               estimation::SlidingWindowOptions::RobustLoss* value) const;
 
   YAML::Node node_;
   std::string path_;
@@ -102,6 +108,13 @@ class YamlWriteVisitor {
     *out_ << YAML::Flow << YAML::BeginSeq << value.x() << value.y() << value.z() << YAML::EndSeq;
   }
   void Emit(io::PointTimeConvention value) { *out_ << io::ToString(value); }
+  void Emit(estimation::Estimator::Backend value) { *out_ << estimation::ToString(value); }
+  void Emit(estimation::SlidingWindowOptions::LinearSolver value) {
+    *out_ << estimation::ToString(value);
+  }
+  void Emit(estimation::SlidingWindowOptions::RobustLoss value) {
+    *out_ << estimation::ToString(value);
+  }
 
   YAML::Emitter* out_;
 };

@@ -13,8 +13,9 @@
 #include <set>
 #include <stdexcept>
 
+#include "bag_open.h"
 #include "hylo/io/bag_reader.h"
-#include "ros_bridge.h"
+#include "hylo/io/ros_bridge.h"
 
 namespace hylo::io {
 namespace {
@@ -24,17 +25,17 @@ int64_t StampOf(const rosbag::MessageInstance& m, bool* from_header) {
   if (m.isType<sensor_msgs::Imu>()) {
     if (auto imu = m.instantiate<sensor_msgs::Imu>()) {
       *from_header = true;
-      return detail::FromRosTime(imu->header.stamp);
+      return ros_bridge::FromRosTime(imu->header.stamp);
     }
   }
   if (m.isType<sensor_msgs::PointCloud2>()) {
     if (auto cloud = m.instantiate<sensor_msgs::PointCloud2>()) {
       *from_header = true;
-      return detail::FromRosTime(cloud->header.stamp);
+      return ros_bridge::FromRosTime(cloud->header.stamp);
     }
   }
   *from_header = false;
-  return detail::FromRosTime(m.getTime());
+  return ros_bridge::FromRosTime(m.getTime());
 }
 
 void DescribeFields(const rosbag::MessageInstance& first, BagTopicDescription* topic) {
@@ -85,8 +86,8 @@ BagDescription DescribeBag(const std::string& path) {
     rosbag::View all(bag);
     d.message_count = all.size();
     if (d.message_count > 0) {
-      d.start_ns = detail::FromRosTime(all.getBeginTime());
-      d.end_ns = detail::FromRosTime(all.getEndTime());
+      d.start_ns = ros_bridge::FromRosTime(all.getBeginTime());
+      d.end_ns = ros_bridge::FromRosTime(all.getEndTime());
       d.duration_s = (d.end_ns - d.start_ns) * 1e-9;
     }
     std::map<std::string, std::string> types;  // sorted by topic name

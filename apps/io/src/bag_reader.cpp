@@ -12,7 +12,8 @@
 #include <map>
 #include <stdexcept>
 
-#include "ros_bridge.h"
+#include "bag_open.h"
+#include "hylo/io/ros_bridge.h"
 
 namespace hylo::io {
 namespace {
@@ -109,7 +110,7 @@ class BagReader : public LogReader {
     }
     auto msg = scans.begin()->instantiate<sensor_msgs::PointCloud2>();
     if (msg == nullptr) throw std::runtime_error("bag '" + path_ + "': unreadable PointCloud2");
-    PointCloud2Message cloud = detail::FromRos(std::move(*msg));
+    PointCloud2Message cloud = ros_bridge::FromRos(std::move(*msg));
     if (convention_ == PointTimeConvention::kAuto) {
       convention_ = DetectPointTimeConvention(cloud.fields);
     }
@@ -125,7 +126,7 @@ class BagReader : public LogReader {
     auto msg = m.instantiate<sensor_msgs::PointCloud2>();
     if (msg == nullptr) throw std::runtime_error("unreadable PointCloud2 on " + m.getTopic());
     message->kind = LogMessage::Kind::kScan;
-    message->scan = DecodePointCloud2(detail::FromRos(std::move(*msg)), convention_,
+    message->scan = DecodePointCloud2(ros_bridge::FromRos(std::move(*msg)), convention_,
                                       &counters_.dropped_non_finite_points);
     ++counters_.scan_messages;
     if (message->scan.points.empty()) ++counters_.empty_scans;
@@ -136,8 +137,8 @@ class BagReader : public LogReader {
   bool ReadImu(const rosbag::MessageInstance& m, LogMessage* message) {
     auto msg = m.instantiate<sensor_msgs::Imu>();
     if (msg == nullptr) throw std::runtime_error("unreadable Imu on " + m.getTopic());
-    estimation::ImuSample& imu = message->imu;
-    imu.t_ns = detail::FromRosTime(msg->header.stamp);
+    ImuSample& imu = message->imu;
+    imu.t_ns = ros_bridge::FromRosTime(msg->header.stamp);
     // Some drivers (Livox) publish g instead of m/s^2; the configuration says which.
     imu.accel_imu = options_.imu_accel_scale * Eigen::Vector3d(msg->linear_acceleration.x,
                                                                msg->linear_acceleration.y,

@@ -7,7 +7,8 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "ros_bridge.h"
+#include "bag_open.h"
+#include "hylo/io/ros_bridge.h"
 
 namespace hylo::io {
 
@@ -21,7 +22,7 @@ struct BagWriter::Impl {
   void Write(const std::string& topic, int64_t receive_t_ns, const Msg& msg) {
     if (!open) throw std::logic_error("bag '" + path + "': write after Close()");
     try {
-      bag.write(topic, detail::ToRosTime(std::max<int64_t>(receive_t_ns, 1)), msg);
+      bag.write(topic, ros_bridge::ToRosTime(std::max<int64_t>(receive_t_ns, 1)), msg);
     } catch (const rosbag::BagException& e) {
       throw std::runtime_error("bag '" + path + "': cannot write to " + topic + " (" +
                                e.what() + ")");
@@ -46,10 +47,10 @@ BagWriter::~BagWriter() {
   }
 }
 
-void BagWriter::WriteImu(const std::string& topic, const estimation::ImuSample& imu,
+void BagWriter::WriteImu(const std::string& topic, const ImuSample& imu,
                          const std::string& frame_id) {
   sensor_msgs::Imu msg;
-  msg.header.stamp = detail::ToRosTime(imu.t_ns);
+  msg.header.stamp = ros_bridge::ToRosTime(imu.t_ns);
   msg.header.frame_id = frame_id;
   msg.orientation_covariance[0] = -1.0;  // sensor_msgs/Imu: "no orientation estimate"
   msg.linear_acceleration.x = imu.accel_imu.x();
@@ -61,16 +62,16 @@ void BagWriter::WriteImu(const std::string& topic, const estimation::ImuSample& 
   impl_->Write(topic, imu.t_ns, msg);
 }
 
-void BagWriter::WriteScan(const std::string& topic, const estimation::LidarScan& scan,
+void BagWriter::WriteScan(const std::string& topic, const LidarScan& scan,
                           PointTimeConvention layout, const std::string& frame_id) {
   PointCloud2Message cloud = EncodePointCloud2(scan, layout);
   cloud.frame_id = frame_id;
-  impl_->Write(topic, scan.end_t_ns, detail::ToRos(std::move(cloud)));
+  impl_->Write(topic, scan.end_t_ns, ros_bridge::ToRos(std::move(cloud)));
 }
 
 void BagWriter::WriteCloud(const std::string& topic, const PointCloud2Message& cloud,
                            int64_t receive_t_ns) {
-  impl_->Write(topic, receive_t_ns, detail::ToRos(PointCloud2Message(cloud)));
+  impl_->Write(topic, receive_t_ns, ros_bridge::ToRos(PointCloud2Message(cloud)));
 }
 
 void BagWriter::Close() {

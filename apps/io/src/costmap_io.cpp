@@ -14,9 +14,9 @@
 namespace hylo::io {
 namespace {
 
-using mapping::CellClass;
-using mapping::GridGeometry;
-using mapping::GridMap;
+using terrain::CellClass;
+using terrain::GridGeometry;
+using terrain::GridMap;
 constexpr double kNoDataValue = -9999.0;
 
 void WriteFile(const std::string& path, const std::string& bytes) {
@@ -27,7 +27,7 @@ void WriteFile(const std::string& path, const std::string& bytes) {
 }
 
 void CheckClasses(const GridMap& grid, const std::vector<CellClass>& classes) {
-  if (classes.size() != grid.geometry().NumCells() || !grid.HasLayer(mapping::layers::kCost)) {
+  if (classes.size() != grid.geometry().NumCells() || !grid.HasLayer(terrain::layers::kCost)) {
     throw std::invalid_argument("costmap: need one class per grid cell and a cost layer");
   }
 }
@@ -108,7 +108,7 @@ void WriteMapServer(const std::string& yaml_path, const GridMap& grid,
   if (!options.IsValid(&why)) throw std::invalid_argument("map_server options: " + why);
   CheckClasses(grid, classes);
   const GridGeometry& g = grid.geometry();
-  const std::vector<float>& cost = grid.Layer(mapping::layers::kCost);
+  const std::vector<float>& cost = grid.Layer(terrain::layers::kCost);
   const std::filesystem::path pgm_path = std::filesystem::path(yaml_path).replace_extension(".pgm");
   std::string pgm = "P5\n# hylo traversability costmap, " + FormatNumber(g.resolution_m, "%.6g") +
                     " m/pixel\n" + std::to_string(g.width) + " " + std::to_string(g.height) +
@@ -159,7 +159,7 @@ void WriteCostmapPng(const std::string& path, const GridMap& grid,
                      const std::vector<CellClass>& classes) {
   CheckClasses(grid, classes);
   const GridGeometry& g = grid.geometry();
-  const std::vector<float>& cost = grid.Layer(mapping::layers::kCost);
+  const std::vector<float>& cost = grid.Layer(terrain::layers::kCost);
   std::vector<uint8_t> rgb(g.NumCells() * 3);
   for (int y = 0; y < g.height; ++y) {
     for (int x = 0; x < g.width; ++x) {
@@ -296,7 +296,7 @@ GridMap ReadAsciiGrid(const std::string& path, const std::string& layer) {
 }
 
 std::vector<std::string> WriteTraversabilityFiles(const std::string& dir,
-                                                  const mapping::TraversabilityMap& map,
+                                                  const terrain::TraversabilityMap& map,
                                                   const MapServerOptions& options) {
   namespace fs = std::filesystem;
   std::error_code error;
@@ -311,7 +311,7 @@ std::vector<std::string> WriteTraversabilityFiles(const std::string& dir,
   WriteCostmapPng(written.back(), map.grid, map.classes);
   for (const std::string& layer : map.grid.LayerNames()) {
     const double offset =
-        layer == mapping::layers::kElevation ? map.grid.geometry().origin_world.z() : 0.0;
+        layer == terrain::layers::kElevation ? map.grid.geometry().origin_world.z() : 0.0;
     written.push_back((fs::path(dir) / "layers" / (layer + ".asc")).string());
     WriteAsciiGrid(written.back(), map.grid, layer, offset);
   }

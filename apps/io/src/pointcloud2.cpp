@@ -170,7 +170,7 @@ bool ToAbsoluteNs(double value, TimeKind kind, int64_t stamp_ns, int64_t* t_ns) 
 
 /// Sets t_ns, end_t_ns and the per-point offsets from the absolute point times.
 void AssignTimes(int64_t stamp_ns, TimeKind kind, const std::vector<int64_t>& times_ns,
-                 estimation::LidarScan* scan) {
+                 LidarScan* scan) {
   scan->t_ns = stamp_ns;
   scan->end_t_ns = stamp_ns;
   if (times_ns.empty()) return;
@@ -190,16 +190,15 @@ void AssignTimes(int64_t stamp_ns, TimeKind kind, const std::vector<int64_t>& ti
 
 }  // namespace
 
-estimation::LidarScan DecodePointCloud2(const PointCloud2Message& cloud,
-                                        PointTimeConvention convention,
-                                        std::size_t* dropped_non_finite) {
+LidarScan DecodePointCloud2(const PointCloud2Message& cloud, PointTimeConvention convention,
+                            std::size_t* dropped_non_finite) {
   CheckLayout(cloud);
   if (convention == PointTimeConvention::kAuto) {
     convention = DetectPointTimeConvention(cloud.fields);
   }
   const PointReaders r = BindFields(cloud, convention);
   const bool swap = cloud.is_bigendian != kHostIsBigEndian;
-  estimation::LidarScan scan;
+  LidarScan scan;
   scan.frame_id = cloud.frame_id;
   scan.points.reserve(std::size_t{cloud.width} * cloud.height);
   std::vector<int64_t> times_ns;
@@ -209,7 +208,7 @@ estimation::LidarScan DecodePointCloud2(const PointCloud2Message& cloud,
     const uint8_t* row_start = cloud.data.data() + std::size_t{row} * cloud.row_step;
     for (uint32_t col = 0; col < cloud.width; ++col) {
       const uint8_t* p = row_start + std::size_t{col} * cloud.point_step;
-      registration::ScanPoint point;
+      ScanPoint point;
       point.position_lidar = Eigen::Vector3d(ReadScalar(p, r.x, swap), ReadScalar(p, r.y, swap),
                                              ReadScalar(p, r.z, swap)).cast<float>();
       int64_t t_ns = cloud.stamp_ns;

@@ -126,7 +126,7 @@ double NsToSeconds(int64_t t_ns) {
   return static_cast<double>(whole) + static_cast<double>(t_ns - whole * 1000000000) * 1e-9;
 }
 
-double FieldValue(Role role, const registration::ScanPoint& p, int64_t scan_t_ns) {
+double FieldValue(Role role, const ScanPoint& p, int64_t scan_t_ns) {
   switch (role) {
     case Role::kX: return p.position_lidar.x();
     case Role::kY: return p.position_lidar.y();
@@ -172,8 +172,7 @@ void WriteScalar(double value, uint8_t datatype, uint8_t* bytes) {
 
 }  // namespace
 
-PointCloud2Message EncodePointCloud2(const estimation::LidarScan& scan,
-                                     PointTimeConvention layout) {
+PointCloud2Message EncodePointCloud2(const LidarScan& scan, PointTimeConvention layout) {
   static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "encoder writes host byte order");
   const DriverLayout driver = LayoutFor(layout);
   PointCloud2Message cloud;
@@ -187,7 +186,7 @@ PointCloud2Message EncodePointCloud2(const estimation::LidarScan& scan,
   cloud.data.assign(std::size_t{cloud.row_step}, 0);
   cloud.is_dense = true;
   for (std::size_t i = 0; i < scan.points.size(); ++i) {
-    const registration::ScanPoint& p = scan.points[i];
+    const ScanPoint& p = scan.points[i];
     HYLO_CHECK(layout != PointTimeConvention::kLivox || p.ring <= 255,
                "Livox `line` is uint8; ring must be <= 255");
     cloud.is_dense = cloud.is_dense && p.position_lidar.allFinite();

@@ -19,13 +19,13 @@ class ScanFolderReader : public LogReader {
     const ScanFolderEntry& entry = index_.scans[next_++];
     const CloudFile cloud = ReadCloud(entry.path);  // one scan in memory at a time
     message->kind = LogMessage::Kind::kScan;
-    estimation::LidarScan& scan = message->scan;
+    LidarScan& scan = message->scan;
     scan.t_ns = entry.pose.t_ns;
     scan.end_t_ns = entry.pose.t_ns;  // no per-point time: every return at the stamp
     scan.frame_id = "lidar";
     scan.points.resize(cloud.positions.size());
     for (std::size_t i = 0; i < cloud.positions.size(); ++i) {
-      registration::ScanPoint& p = scan.points[i];
+      ScanPoint& p = scan.points[i];
       // Scans are in their own sensor frame (near zero), so float keeps sub-millimetre detail.
       p.position_lidar = cloud.positions[i].cast<float>();
       p.intensity = cloud.intensity.empty() ? 0.f : cloud.intensity[i];

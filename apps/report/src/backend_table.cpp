@@ -92,8 +92,6 @@ std::string ToString(RowStatus status) {
   switch (status) {
     case RowStatus::kOk:
       return "ok";
-    case RowStatus::kNotAvailable:
-      return "not available";
     case RowStatus::kFailed:
       return "failed";
   }

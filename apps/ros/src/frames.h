@@ -13,9 +13,7 @@
 namespace hylo::rosnode {
 
 /// A Lie-group pose as an Eigen isometry.
-inline Eigen::Isometry3d ToIsometry(const estimation::lie::SE3d& T) {
-  return Eigen::Isometry3d(T.Matrix());
-}
+inline Eigen::Isometry3d ToIsometry(const lie::SE3d& T) { return Eigen::Isometry3d(T.Matrix()); }
 
 /// The three transforms of one scan result, in the published frames.
 struct FramePoses {

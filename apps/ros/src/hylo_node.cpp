@@ -3,9 +3,9 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "hylo/io/cloud_io.h"
-#include "hylo/mapping/prior_map.h"
+#include "hylo/io/ros_bridge.h"
 #include "hylo/registration/pose_guess.h"
+#include "hylo/run/prior_map_io.h"
 #include "ros_messages.h"
 
 namespace hylo::rosnode {
@@ -22,14 +22,14 @@ estimation::OdometryPipelineOptions PipelineOptionsFor(const config::RunConfig& 
                                                        const NodeParams& params) {
   estimation::OdometryPipelineOptions options = config.PipelineOptions();
   if (params.registered_scan_voxel_m >= 0.0) {
-    options.registered_scan_voxel_m = params.registered_scan_voxel_m;
+    options.output.dense_map_voxel_m = params.registered_scan_voxel_m;
   }
   return options;
 }
 
 InputQueueOptions QueueOptionsFor(const config::RunConfig& config, const NodeParams& params) {
   InputQueueOptions options = params.queue;
-  options.wait_for_imu = config.imu.enabled;
+  options.wait_for_imu = config.pipeline.imu.enabled;
   return options;
 }
 
@@ -50,7 +50,7 @@ HyloNode::HyloNode(ros::NodeHandle nh, ros::NodeHandle private_nh, const NodePar
   // roscpp's queues only buffer between the socket and the callbacks, which decode and
   // enqueue; the bounded InputQueue is where messages wait for the worker.
   cloud_sub_ = nh_.subscribe(config_.lidar.topic, 20, &HyloNode::OnCloud, this);
-  if (config_.imu.enabled) {
+  if (config_.pipeline.imu.enabled) {
     imu_sub_ = nh_.subscribe(config_.imu.topic, 2000, &HyloNode::OnImu, this,
                              ros::TransportHints().tcpNoDelay());
   }
@@ -58,15 +58,15 @@ HyloNode::HyloNode(ros::NodeHandle nh, ros::NodeHandle private_nh, const NodePar
   relocalize_srv_ = private_nh_.advertiseService("relocalize", &HyloNode::OnRelocalize, this);
   save_map_srv_ = private_nh_.advertiseService("save_map", &HyloNode::OnSaveMap, this);
   ROS_INFO("hylo_node: %s, back-end %s, lidar %s, imu %s, frames %s -> %s -> %s",
-           localizing_ ? "localization in a prior map" : "SLAM", config_.backend.c_str(),
-           config_.lidar.topic.c_str(), config_.imu.enabled ? config_.imu.topic.c_str() : "none",
-           frames_.map.c_str(), frames_.odom.c_str(), frames_.base.c_str());
+           localizing_ ? "localization in a prior map" : "SLAM", config_.BackendName().c_str(),
+           config_.lidar.topic.c_str(),
+           config_.pipeline.imu.enabled ? config_.imu.topic.c_str() : "none", frames_.map.c_str(),
+           frames_.odom.c_str(), frames_.base.c_str());
 }
 
 void HyloNode::LoadPriorMap() {
-  const std::string guess = params_.initial_guess.empty()
-                                ? config_.localization.initial_guess
-                                : params_.initial_guess;
+  const std::string guess =
+      params_.initial_guess.empty() ? config_.initial_guess : params_.initial_guess;
   if (guess.empty()) {
     throw std::runtime_error("~prior_map needs ~initial_guess (\"x y z roll pitch yaw\", m and "
                              "deg) or localization.initial_guess in " + params_.config_path);
@@ -77,14 +77,9 @@ void HyloNode::LoadPriorMap() {
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(std::string("initial guess: ") + e.what());
   }
-  mapping::PriorMapOptions options;
-  options.resolution_m = config_.map.prior_resolution_m;
   const mapping::PriorMap prior =
-      mapping::BuildPriorMap(io::ReadCloud(params_.prior_map).positions, options,
-                             params_.prior_map);
+      run::LoadPriorMap(params_.prior_map, config_.prior_map, T_world_imu, &pipeline_);
   origin_world_ = prior.origin_world;
-  pipeline_.SetPriorMap(prior.points_local);
-  pipeline_.SetInitialGuess(mapping::PoseToLocal(T_world_imu, origin_world_));
   localizing_ = true;
   outputs_.SetOrigin(origin_world_);
   outputs_.PublishMap(prior.points_local, 0);
@@ -94,11 +89,11 @@ void HyloNode::LoadPriorMap() {
 }
 
 void HyloNode::OnCloud(const sensor_msgs::PointCloud2::ConstPtr& msg) {
-  io::PointCloud2Message cloud = FromRos(*msg);
+  io::PointCloud2Message cloud = io::ros_bridge::FromRos(*msg);
   if (convention_ == io::PointTimeConvention::kAuto) {
     convention_ = io::DetectPointTimeConvention(cloud.fields);
   }
-  estimation::LidarScan scan;
+  LidarScan scan;
   try {
     scan = io::DecodePointCloud2(cloud, convention_, nullptr);
   } catch (const std::runtime_error& e) {
@@ -119,7 +114,7 @@ void HyloNode::OnCloud(const sensor_msgs::PointCloud2::ConstPtr& msg) {
 }
 
 void HyloNode::OnImu(const sensor_msgs::Imu::ConstPtr& msg) {
-  const estimation::ImuSample sample = FromRos(*msg, config_.imu.accel_scale);
+  const ImuSample sample = FromRos(*msg, config_.imu.accel_scale);
   if (!sample.accel_imu.allFinite() || !sample.gyro_imu.allFinite()) return;
   if (!input_.PushImu(sample)) {
     ROS_WARN_THROTTLE(5.0, "hylo_node: late or out-of-order IMU sample dropped (see ~health)");
@@ -209,14 +204,9 @@ void HyloNode::ServeRequests() {
 }
 
 std::string HyloNode::SaveMap(const std::string& path) {
-  io::CloudFile cloud;
-  const registration::PointCloud points_map = pipeline_.map().Flatten();
-  cloud.positions.reserve(points_map.size());
-  for (const Eigen::Vector3f& p : points_map) {
-    cloud.positions.push_back(p.cast<double>() + origin_world_);
-  }
-  io::WriteCloud(path, cloud);
-  return "wrote " + std::to_string(cloud.positions.size()) + " points to " + path;
+  const PointCloud points_map = pipeline_.map().Flatten();
+  run::WriteWorldCloud(path, points_map, origin_world_);
+  return "wrote " + std::to_string(points_map.size()) + " points to " + path;
 }
 
 void HyloNode::ReportEvents() {
@@ -237,7 +227,7 @@ void HyloNode::PublishHealth(const estimation::ScanResult* last) {
   HealthReport& report = health_;
   report.state = StateOf(pipeline_.status(), relocalization_pending_);
   report.localizing = localizing_;
-  report.backend = config_.backend;
+  report.backend = config_.BackendName();
   if (last != nullptr) {
     report.t_ns = last->t_ns;
     report.scan = last->health;
@@ -255,8 +245,8 @@ void HyloNode::PublishHealth(const estimation::ScanResult* last) {
 }
 
 void HyloNode::Run() {
-  std::vector<estimation::ImuSample> imu;
-  std::vector<estimation::LidarScan> scans;
+  std::vector<ImuSample> imu;
+  std::vector<LidarScan> scans;
   std::vector<estimation::ScanResult> results;
   last_health_ = ros::WallTime::now();
   while (ros::ok()) {

@@ -22,7 +22,7 @@ InputQueue::InputQueue(const InputQueueOptions& options) : options_(options) {
   if (!options_.IsValid(&why)) throw std::invalid_argument("InputQueueOptions: " + why);
 }
 
-bool InputQueue::PushScan(estimation::LidarScan scan) {
+bool InputQueue::PushScan(LidarScan scan) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (closed_) return false;
@@ -43,7 +43,7 @@ bool InputQueue::PushScan(estimation::LidarScan scan) {
   return true;
 }
 
-bool InputQueue::PushImu(const estimation::ImuSample& sample) {
+bool InputQueue::PushImu(const ImuSample& sample) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (closed_) return false;
@@ -66,12 +66,11 @@ bool InputQueue::PushImu(const estimation::ImuSample& sample) {
   return true;
 }
 
-bool InputQueue::ScanReady(const estimation::LidarScan& scan) const {
+bool InputQueue::ScanReady(const LidarScan& scan) const {
   return !options_.wait_for_imu || last_imu_t_ns_ >= scan.end_t_ns;
 }
 
-bool InputQueue::Pop(std::vector<estimation::ImuSample>* imu,
-                     std::vector<estimation::LidarScan>* scans,
+bool InputQueue::Pop(std::vector<ImuSample>* imu, std::vector<LidarScan>* scans,
                      std::chrono::milliseconds timeout) {
   std::unique_lock<std::mutex> lock(mutex_);
   ready_.wait_for(lock, timeout, [this] {

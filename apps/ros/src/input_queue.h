@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "hylo/estimation/measurements.h"
+#include "hylo/common/sensor_data.h"
 
 namespace hylo::rosnode {
 
@@ -49,14 +49,14 @@ class InputQueue {
   explicit InputQueue(const InputQueueOptions& options);
 
   /// False when the scan was dropped as late / out of order.
-  bool PushScan(estimation::LidarScan scan);
+  bool PushScan(LidarScan scan);
   /// False when the sample was dropped as late / out of order.
-  bool PushImu(const estimation::ImuSample& sample);
+  bool PushImu(const ImuSample& sample);
 
   /// Waits up to `timeout` for a releasable scan, then moves what can be released (in
   /// arrival order per stream) into `imu` and `scans` (appended). After Close() everything is
   /// released; false once closed and nothing is left.
-  bool Pop(std::vector<estimation::ImuSample>* imu, std::vector<estimation::LidarScan>* scans,
+  bool Pop(std::vector<ImuSample>* imu, std::vector<LidarScan>* scans,
            std::chrono::milliseconds timeout);
   /// Wakes the worker; later pushes are ignored.
   void Close();
@@ -67,13 +67,13 @@ class InputQueue {
 
  private:
   /// With wait_for_imu, the IMU has reached the scan's end (the pipeline can process it).
-  bool ScanReady(const estimation::LidarScan& scan) const;
+  bool ScanReady(const LidarScan& scan) const;
 
   InputQueueOptions options_;
   mutable std::mutex mutex_;
   std::condition_variable ready_;
-  std::deque<estimation::LidarScan> scans_;
-  std::deque<estimation::ImuSample> imu_;
+  std::deque<LidarScan> scans_;
+  std::deque<ImuSample> imu_;
   int64_t last_scan_t_ns_ = INT64_MIN;
   int64_t last_imu_t_ns_ = INT64_MIN;
   int64_t released_scan_end_ns_ = INT64_MIN;  ///< latest end of a released scan

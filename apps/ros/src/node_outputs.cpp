@@ -4,6 +4,7 @@
 #include <std_msgs/String.h>
 
 #include "hylo/common/time.h"
+#include "hylo/io/ros_bridge.h"
 #include "hylo/registration/voxel_filter.h"
 
 namespace hylo::rosnode {
@@ -64,7 +65,7 @@ void NodeOutputs::PublishScan(const estimation::ScanResult& result) {
   const FramePoses poses =
       ComputeFramePoses(ToIsometry(result.state.T_map_imu()), ToIsometry(result.T_map_odom),
                         origin_world_);
-  const ros::Time stamp = ToRosTime(result.t_ns);
+  const ros::Time stamp = io::ros_bridge::ToRosTime(result.t_ns);
   odometry_.publish(ToOdometryMsg(result, poses, frames_));
   tf_.sendTransform({Stamped(poses.T_world_odom, stamp, frames_.map, frames_.odom),
                      Stamped(poses.T_odom_imu, stamp, frames_.odom, frames_.base)});
@@ -90,8 +91,8 @@ bool NodeOutputs::MapDue(int64_t t_ns, std::size_t map_size) const {
          map_size != last_map_size_;
 }
 
-void NodeOutputs::PublishMap(const registration::PointCloud& points_map, int64_t t_ns) {
-  const registration::PointCloud sampled =
+void NodeOutputs::PublishMap(const PointCloud& points_map, int64_t t_ns) {
+  const PointCloud sampled =
       options_.map_voxel_m > 0.0
           ? registration::UniformSample(points_map, static_cast<float>(options_.map_voxel_m))
           : points_map;

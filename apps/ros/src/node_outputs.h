@@ -40,7 +40,7 @@ class NodeOutputs {
   /// passed and the map changed size (checked before the caller flattens the map).
   bool MapDue(int64_t t_ns, std::size_t map_size) const;
   /// The map (pipeline's map frame), downsampled; latched.
-  void PublishMap(const registration::PointCloud& points_map, int64_t t_ns);
+  void PublishMap(const PointCloud& points_map, int64_t t_ns);
   void PublishHealth(const std::string& json);
   void PublishCostmap(const OccupancyGridData& grid);
   /// Static base → `lidar_frame` from the configured extrinsic T_imu_lidar.

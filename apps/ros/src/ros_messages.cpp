@@ -3,36 +3,15 @@
 #include <algorithm>
 #include <cstring>
 
+#include "hylo/io/ros_bridge.h"
+
 namespace hylo::rosnode {
 
-int64_t FromRosTime(const ros::Time& t) {
-  return static_cast<int64_t>(t.sec) * 1000000000 + static_cast<int64_t>(t.nsec);
-}
+using io::ros_bridge::FromRosTime;
+using io::ros_bridge::ToRosTime;
 
-ros::Time ToRosTime(int64_t t_ns) {
-  ros::Time t;
-  t.fromNSec(static_cast<uint64_t>(t_ns < 0 ? 0 : t_ns));
-  return t;
-}
-
-io::PointCloud2Message FromRos(const sensor_msgs::PointCloud2& msg) {
-  io::PointCloud2Message cloud;
-  cloud.stamp_ns = FromRosTime(msg.header.stamp);
-  cloud.frame_id = msg.header.frame_id;
-  cloud.height = msg.height;
-  cloud.width = msg.width;
-  cloud.fields.reserve(msg.fields.size());
-  for (const auto& f : msg.fields) cloud.fields.push_back({f.name, f.datatype, f.offset, f.count});
-  cloud.is_bigendian = msg.is_bigendian != 0;
-  cloud.point_step = msg.point_step;
-  cloud.row_step = msg.row_step;
-  cloud.data = msg.data;
-  cloud.is_dense = msg.is_dense != 0;
-  return cloud;
-}
-
-estimation::ImuSample FromRos(const sensor_msgs::Imu& msg, double accel_scale) {
-  estimation::ImuSample sample;
+ImuSample FromRos(const sensor_msgs::Imu& msg, double accel_scale) {
+  ImuSample sample;
   sample.t_ns = FromRosTime(msg.header.stamp);
   sample.accel_imu = accel_scale * Eigen::Vector3d(msg.linear_acceleration.x,
                                                    msg.linear_acceleration.y,
@@ -74,7 +53,7 @@ geometry_msgs::Transform ToTransformMsg(const Eigen::Isometry3d& T) {
   return transform;
 }
 
-sensor_msgs::PointCloud2 ToCloudMsg(const registration::PointCloud& points_map,
+sensor_msgs::PointCloud2 ToCloudMsg(const PointCloud& points_map,
                                     const Eigen::Vector3d& origin_world, int64_t t_ns,
                                     const std::string& frame_id) {
   sensor_msgs::PointCloud2 msg;

@@ -1,6 +1,7 @@
 #pragma once
-// The only place where ROS message types meet hylo's: ROS → the plain PointCloud2 mirror and
-// ImuSample on the way in; scan results → nav_msgs/geometry_msgs/sensor_msgs on the way out.
+// The node's ROS messages: ImuSample and poses on the way in (clouds and stamps go through
+// io's ros_bridge.h, as for bags); scan results → nav_msgs/geometry_msgs/sensor_msgs on the
+// way out.
 
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/Transform.h>
@@ -28,14 +29,8 @@ struct FrameNames {
   std::string base = "base_link";
 };
 
-int64_t FromRosTime(const ros::Time& t);
-/// Negative stamps (not representable in ros::Time) are clamped to 0.
-ros::Time ToRosTime(int64_t t_ns);
-
-/// Copies the message into the mirror that io::DecodePointCloud2 reads.
-io::PointCloud2Message FromRos(const sensor_msgs::PointCloud2& msg);
 /// The sample in the IMU frame, accelerations multiplied by `accel_scale` (drivers in g).
-estimation::ImuSample FromRos(const sensor_msgs::Imu& msg, double accel_scale);
+ImuSample FromRos(const sensor_msgs::Imu& msg, double accel_scale);
 
 Eigen::Isometry3d FromRos(const geometry_msgs::Pose& pose);
 geometry_msgs::Pose ToPoseMsg(const Eigen::Isometry3d& T);
@@ -44,7 +39,7 @@ geometry_msgs::Transform ToTransformMsg(const Eigen::Isometry3d& T);
 /// x y z float32 cloud in `frame_id`, `origin_world` added to every point (in double, then
 /// rounded once). float32, as RViz and PCL expect: keep the coordinates small (node_outputs.h
 /// publishes in the local frame).
-sensor_msgs::PointCloud2 ToCloudMsg(const registration::PointCloud& points_map,
+sensor_msgs::PointCloud2 ToCloudMsg(const PointCloud& points_map,
                                     const Eigen::Vector3d& origin_world, int64_t t_ns,
                                     const std::string& frame_id);
 

@@ -10,14 +10,13 @@
 
 #include "hylo/common/time.h"
 #include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/evaluation/cloud_distance.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/log_reader.h"
 #include "hylo/io/progress.h"
 #include "hylo/mapping/ikd_tree.h"
-#include "hylo/mapping/prior_map.h"
-#include "hylo/registration/cloud_distance.h"
-#include "hylo/registration/pose_guess.h"
 #include "hylo/registration/voxel_filter.h"
+#include "hylo/run/prior_map_io.h"
 #include "run_outputs.h"
 
 namespace hylo::run {
@@ -25,16 +24,6 @@ namespace {
 
 using estimation::OdometryPipeline;
 using estimation::ScanResult;
-
-void WriteMapFile(const std::string& path, const registration::PointCloud& points_map,
-                  const Eigen::Vector3d& origin_world) {
-  io::CloudFile file;
-  file.positions.reserve(points_map.size());
-  for (const Eigen::Vector3f& p : points_map) {
-    file.positions.push_back(p.cast<double>() + origin_world);
-  }
-  io::WriteCloud(path, file, io::CloudEncoding::kBinaryCompressed);
-}
 
 io::Json EventsJson(const std::vector<estimation::LocalizationEvent>& events,
                     const Eigen::Vector3d& origin_world) {
@@ -57,14 +46,14 @@ io::Json EventsJson(const std::vector<estimation::LocalizationEvent>& events,
 
 
 // The paper's cloud-to-cloud metric: the registered scans against the prior map.
-io::Json CloudToCloudJson(const registration::PointCloud& registered_map,
-                          const registration::PointCloud& prior_map, double max_distance_m) {
+io::Json CloudToCloudJson(const PointCloud& registered_map, const PointCloud& prior_map,
+                          double max_distance_m) {
   mapping::IkdTree reference{mapping::IkdTree::Options()};
   reference.Build(prior_map);
-  registration::CloudDistanceOptions options;
+  evaluation::CloudDistanceOptions options;
   options.max_distance_m = max_distance_m;
-  const registration::CloudDistanceSummary s =
-      registration::CloudToCloudDistance(registered_map, reference, options);
+  const evaluation::CloudDistanceSummary s =
+      evaluation::CloudToCloudDistance(registered_map, reference, options);
   io::Json j;
   j["ok"] = s.ok;
   j["mean_m"] = s.mean_m;
@@ -106,37 +95,33 @@ RunResult RunLog(const RunRequest& request) {
 
   // Prior map in a local frame near zero; everything written goes back to the world frame.
   const bool localizing = !request.prior_map.empty();
-  Eigen::Vector3d origin_world = Eigen::Vector3d::Zero();
   mapping::PriorMap prior;
   if (localizing) {
     if (!request.guess_world_imu) {
       throw std::runtime_error("localization needs an initial guess (--guess or "
                                "localization.initial_guess)");
     }
-    mapping::PriorMapOptions prior_options;
-    prior_options.resolution_m = config.map.prior_resolution_m;
-    prior = mapping::BuildPriorMap(io::ReadCloud(request.prior_map).positions, prior_options,
-                                   request.prior_map);
-    origin_world = prior.origin_world;
-    pipeline.SetPriorMap(prior.points_local);
-    pipeline.SetInitialGuess(mapping::PoseToLocal(*request.guess_world_imu, origin_world));
+    prior = LoadPriorMap(request.prior_map, config.prior_map, *request.guess_world_imu, &pipeline);
   }
+  const Eigen::Vector3d origin_world = prior.origin_world;
 
   auto log = io::OpenLog(request.log, config.LogOptions());
   std::vector<ScanResult> results;
   // Dense registered scans, one point per voxel (the crafting input and the c2c metric).
   // A hash of voxels, not a tree: nothing searches this map during the run, and the tree's
   // downsampling insert cost as much per scan as the odometry (hylo map, session A).
-  const float dense_voxel_m = static_cast<float>(config.output.dense_map_voxel_m);
+  const float dense_voxel_m = static_cast<float>(config.pipeline.output.dense_map_voxel_m);
   std::optional<registration::UniformSampler> dense_map;
   if (dense_voxel_m > 0.f) dense_map.emplace(dense_voxel_m);
+  std::vector<estimation::NavState> finalized;
   std::size_t consumed = 0;
-  auto consume_dense = [&] {
+  auto consume = [&] {
     for (; consumed < results.size(); ++consumed) {
       auto& points = results[consumed].registered_points_map;
       if (dense_map && !points.empty()) dense_map->Add(points);
-      registration::PointCloud().swap(points);
+      PointCloud().swap(points);
     }
+    for (estimation::NavState& x : pipeline.TakeFinalizedStates()) finalized.push_back(x);
   };
   io::Progress progress(request.label, 0, request.show_progress);
   io::LogMessage message;
@@ -148,12 +133,12 @@ RunResult RunLog(const RunRequest& request) {
     }
     pipeline.AddScan(std::move(message.scan));
     pipeline.Process(&results);
-    consume_dense();
+    consume();
     progress.Update(++scans);
     if (pipeline.status() == OdometryPipeline::Status::kFailed) break;
   }
-  pipeline.Process(&results, true);
-  consume_dense();
+  pipeline.Finish(&results);
+  consume();
   progress.Finish();
   if (pipeline.status() == OdometryPipeline::Status::kFailed) {
     throw std::runtime_error(request.log + ": " + pipeline.message());
@@ -161,32 +146,38 @@ RunResult RunLog(const RunRequest& request) {
   if (results.empty()) throw std::runtime_error(request.log + ": no scan was processed");
 
   RunResult run;
-  run.trajectory = WorldTrajectory(results, origin_world);
+  run.trajectory = WorldTrajectory(finalized, origin_world);
+  run.live_trajectory = WorldTrajectory(LiveStates(results), origin_world);
   io::WriteTum(request.out_dir + "/trajectory.tum", run.trajectory);
+  io::WriteTum(request.out_dir + "/trajectory_live.tum", run.live_trajectory);
   WriteOdometryCsv(request.out_dir + "/odometry.csv", results, origin_world, config.output);
   WriteTimingCsv(request.out_dir + "/timing.csv", results);
-  WriteMapFile(request.out_dir + "/map.pcd", pipeline.map().Flatten(), origin_world);
+  WriteWorldCloud(request.out_dir + "/map.pcd", pipeline.map().Flatten(), origin_world);
   if (localizing && pipeline.map().run_size() > 0) {
-    WriteMapFile(request.out_dir + "/map_added.pcd", pipeline.map().FlattenRun(), origin_world);
+    WriteWorldCloud(request.out_dir + "/map_added.pcd", pipeline.map().FlattenRun(), origin_world);
   }
-  const registration::PointCloud no_dense_map;
-  const registration::PointCloud& dense = dense_map ? dense_map->points() : no_dense_map;
-  if (dense_map) WriteMapFile(request.out_dir + "/map_dense.pcd", dense, origin_world);
+  const PointCloud no_dense_map;
+  const PointCloud& dense = dense_map ? dense_map->points() : no_dense_map;
+  if (dense_map) WriteWorldCloud(request.out_dir + "/map_dense.pcd", dense, origin_world);
 
   double path_m = 0.0;
   std::vector<double> cpu_ms;
-  for (std::size_t i = 0; i < results.size(); ++i) {
-    run.ms_per_scan.push_back(results[i].total_ms);
-    cpu_ms.push_back(results[i].cpu_ms);
-    if (i > 0) path_m += (results[i].state.p_map_imu - results[i - 1].state.p_map_imu).norm();
+  for (const estimation::ScanResult& r : results) {
+    run.ms_per_scan.push_back(r.total_ms);
+    cpu_ms.push_back(r.cpu_ms);
+  }
+  for (std::size_t i = 1; i < finalized.size(); ++i) {
+    path_m += (finalized[i].p_map_imu - finalized[i - 1].p_map_imu).norm();
   }
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   io::Json& j = run.summary;
   j["log"] = request.log;
-  j["mode"] = !localizing ? "slam" : config.map.update_after_s < 0.0 ? "localization" : "hybrid";
-  j["backend"] = config.backend;
-  j["imu"] = config.imu.enabled;
+  j["mode"] = !localizing                                         ? "slam"
+              : config.pipeline.localization.update_after_s < 0.0 ? "localization"
+                                                                  : "hybrid";
+  j["backend"] = config.BackendName();
+  j["imu"] = config.pipeline.imu.enabled;
   j["scans_processed"] = results.size();
   j["counters"] = PipelineCountersJson(pipeline.counters());
   j["path_length_m"] = path_m;

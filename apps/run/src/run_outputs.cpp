@@ -31,22 +31,29 @@ std::ofstream OpenOrThrow(const std::string& path) {
 
 }  // namespace
 
-std::vector<io::StampedPose> WorldTrajectory(const std::vector<estimation::ScanResult>& results,
+std::vector<io::StampedPose> WorldTrajectory(const std::vector<estimation::NavState>& states,
                                              const Eigen::Vector3d& origin_world) {
   std::vector<io::StampedPose> trajectory;
-  trajectory.reserve(results.size());
-  for (const auto& r : results) {
+  trajectory.reserve(states.size());
+  for (const estimation::NavState& x : states) {
     io::StampedPose p;
-    p.t_ns = r.t_ns;
-    p.position = r.state.p_map_imu + origin_world;
-    p.orientation = r.state.R_map_imu.unit_quaternion();
+    p.t_ns = x.t_ns;
+    p.position = x.p_map_imu + origin_world;
+    p.orientation = x.R_map_imu.unit_quaternion();
     trajectory.push_back(p);
   }
   return trajectory;
 }
 
+std::vector<estimation::NavState> LiveStates(const std::vector<estimation::ScanResult>& results) {
+  std::vector<estimation::NavState> states;
+  states.reserve(results.size());
+  for (const estimation::ScanResult& r : results) states.push_back(r.state);
+  return states;
+}
+
 void WriteOdometryCsv(const std::string& path, const std::vector<estimation::ScanResult>& results,
-                      const Eigen::Vector3d& origin_world, const config::OutputConfig& output) {
+                      const Eigen::Vector3d& origin_world, const config::OutputFrames& output) {
   std::ofstream out = OpenOrThrow(path);
   out << "t_s,frame_id,child_frame_id,x,y,z,qx,qy,qz,qw,vx,vy,vz,wx,wy,wz";
   WriteCovarianceHeader(out, "pose_cov", kPoseAxes);

@@ -11,15 +11,17 @@
 
 namespace hylo::run {
 
-/// T_world_imu of each result: the map pose plus the map's world origin.
-std::vector<io::StampedPose> WorldTrajectory(const std::vector<estimation::ScanResult>& results,
+/// T_world_imu of each state: the map pose plus the map's world origin.
+std::vector<io::StampedPose> WorldTrajectory(const std::vector<estimation::NavState>& states,
                                              const Eigen::Vector3d& origin_world);
+/// The live states of `results` (one per processed scan).
+std::vector<estimation::NavState> LiveStates(const std::vector<estimation::ScanResult>& results);
 
-/// odometry.csv: per scan at its end time, frames named by `output`, pose T_world_base, body
+/// odometry.csv: per scan at its end time, frames named by `frames`, pose T_world_base, body
 /// twist, pose covariance [x y z (world/map axes, m); rx ry rz (base axes, rad)] and twist
 /// covariance [vx vy vz; wx wy wz] (base axes), row-major, the map→odom transform and health.
 void WriteOdometryCsv(const std::string& path, const std::vector<estimation::ScanResult>& results,
-                      const Eigen::Vector3d& origin_world, const config::OutputConfig& output);
+                      const Eigen::Vector3d& origin_world, const config::OutputFrames& frames);
 
 /// timing.csv: per-scan sizes, update figures and wall/CPU times.
 void WriteTimingCsv(const std::string& path, const std::vector<estimation::ScanResult>& results);

@@ -1,34 +1,41 @@
 #pragma once
-// The state-estimation strategy: one interface, two back-ends (the IESKF of FAST-LIO2 and,
-// later, a sliding-window Ceres smoother), chosen by the configuration key `backend`.
+// The state-estimation strategy: one interface, two back-ends (the IESKF of FAST-LIO2 in
+// ieskf/, a sliding-window Ceres smoother in sliding_window/), chosen by the configuration key
+// `backend` (EstimatorOptions, estimator_options.h).
 //
 // What the interface asks of a back-end is what both can do without knowing the other:
 // it takes *raw* IMU samples (the smoother preintegrates them between scans, the filter
 // propagates), it can predict the nominal state at any time after its last update from the
 // buffered IMU (undistortion needs poses inside a scan), and it updates from one deskewed,
 // downsampled scan given the shared plane queries on the map. Everything around it (queue,
-// initialisation, undistortion, map) is shared code in OdometryPipeline.
+// initialisation, undistortion, map, localization) is shared code in OdometryPipeline.
+//
+// Two views of the estimate: the *live* state (state(), after the newest update, what a robot
+// steers by) and *finalized* states (TakeFinalized(), each scan's state once the back-end will
+// not change it any more). The filter finalizes each state as it updates it; the smoother when
+// the state leaves its window, with everything the later scans taught it. Trajectories and
+// their errors use finalized states; the odometry stream uses the live one.
 
-#include <Eigen/Core>
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
-#include "hylo/estimation/ieskf_options.h"
-#include "hylo/estimation/imu_noise.h"
-#include "hylo/estimation/measurements.h"
+#include "hylo/common/point_types.h"
+#include "hylo/common/sensor_data.h"
 #include "hylo/estimation/nav_state.h"
-#include "hylo/estimation/sliding_window_options.h"
 #include "hylo/registration/plane_matcher.h"
-#include "hylo/registration/point_types.h"
 
 namespace hylo::estimation {
+
+struct EstimatorOptions;  // estimator_options.h
+struct ImuOptions;        // imu_options.h
 
 /// A scan after undistortion: every point expressed in the lidar frame at `t_ns` (the scan
 /// end), usually downsampled.
 struct DeskewedScan {
-  int64_t t_ns = 0;                      ///< time all points refer to, ns
-  registration::PointCloud points_lidar; ///< m, lidar frame at t_ns
+  int64_t t_ns = 0;         ///< time all points refer to, ns
+  PointCloud points_lidar;  ///< m, lidar frame at t_ns
 };
 
 /// What one Update did. A failed or partial update keeps the predicted state and says why.
@@ -39,9 +46,12 @@ struct UpdateSummary {
   bool converged = false;        ///< the last step was below the convergence thresholds
   bool applied = false;          ///< the lidar correction was applied (enough matches)
   bool degenerate = false;       ///< some pose direction is (nearly) unobserved
-  double min_translation_information = 0.0;  ///< see IeskfOptions, 0..1
-  double min_rotation_information = 0.0;     ///< see IeskfOptions, m²
+  double min_translation_information = 0.0;  ///< see LidarUpdateOptions, 0..1
+  double min_rotation_information = 0.0;     ///< see LidarUpdateOptions, m²
   double rms_residual_m = 0.0;   ///< RMS point-to-plane residual of the matches, m
+  /// Per offered point, its point-to-plane residual at the final state (m), NaN where the
+  /// point had no plane. How well the scan fits the map, without a second search of it.
+  std::vector<float> point_residuals_m;
   std::string message;           ///< empty when all went well; otherwise why not
 };
 
@@ -49,22 +59,14 @@ class Estimator {
  public:
   enum class Backend { kIeskf, kSlidingWindow };
 
-  struct Options {
-    Backend backend = Backend::kIeskf;  ///< from the `backend` key
-    bool use_imu = true;                ///< false: constant-velocity model, no IMU (imu: none)
-    ImuNoise imu_noise;                 ///< continuous-time IMU noise
-    IeskfOptions ieskf;                 ///< used when backend == kIeskf
-    SlidingWindowOptions sliding_window;  ///< used when backend == kSlidingWindow
-    bool IsValid(std::string* why) const;
-  };
-
   virtual ~Estimator() = default;
 
-  /// The back-end chosen by options.backend. Throws hylo::InternalError for invalid options
-  /// and std::invalid_argument for a back-end that is not built.
-  static std::unique_ptr<Estimator> Create(const Options& options);
+  /// The back-end chosen by options.backend, for the inertial sensor `imu` (or none). Throws
+  /// hylo::InternalError naming the field when `options` or `imu` is not valid.
+  static std::unique_ptr<Estimator> Create(const EstimatorOptions& options, const ImuOptions& imu);
 
-  /// Starts from `state` with covariance `covariance` (order of nav_state.h).
+  /// Starts from `state` with covariance `covariance` (order of nav_state.h). States of an
+  /// earlier start that were not finalized yet are finalized first.
   virtual void Initialize(const NavState& state, const StateCovariance& covariance) = 0;
   /// Buffers one IMU sample (samples must come in time order; older ones are ignored).
   virtual void AddImu(const ImuSample& sample) = 0;
@@ -76,13 +78,18 @@ class Estimator {
                                const registration::PlaneMatcher& planes) = 0;
 
   virtual bool initialized() const = 0;
-  /// The state after the last Update (or Initialize).
+  /// The live state: after the last Update (or Initialize).
   virtual const NavState& state() const = 0;
   /// The full error-state covariance at state(), order of nav_state.h. Blocks a back-end
   /// does not estimate (e.g. a fixed extrinsic) hold their initial values.
   virtual StateCovariance Covariance() const = 0;
   /// 6×6 pose covariance, order [δp (map, m); δθ (IMU frame, rad)] (nav_state.h).
   virtual PoseCovariance6 PoseCovariance() const { return PoseBlock(Covariance()); }
+
+  /// Appends the states finalized since the last call, one per updated scan, oldest first.
+  virtual void TakeFinalized(std::vector<NavState>* states) = 0;
+  /// The log ended: every state still open becomes final (the smoother's window).
+  virtual void Finish() = 0;
 };
 
 /// "ieskf" / "sliding_window".

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "hylo/estimation/measurements.h"
+#include "hylo/common/sensor_data.h"
 #include "hylo/estimation/nav_state.h"
 
 namespace hylo::estimation {

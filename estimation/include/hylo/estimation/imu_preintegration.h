@@ -16,10 +16,10 @@
 
 #include <Eigen/Core>
 
-#include "hylo/estimation/imu_noise.h"
+#include "hylo/estimation/imu_options.h"
 #include "hylo/estimation/imu_propagation.h"
-#include "hylo/estimation/lie/so3.h"
 #include "hylo/estimation/nav_state.h"
+#include "hylo/lie/so3.h"
 
 namespace hylo::estimation {
 

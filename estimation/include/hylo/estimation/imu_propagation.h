@@ -11,8 +11,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "hylo/estimation/imu_noise.h"
-#include "hylo/estimation/measurements.h"
+#include "hylo/common/sensor_data.h"
+#include "hylo/estimation/imu_options.h"
 #include "hylo/estimation/nav_state.h"
 
 namespace hylo::estimation {

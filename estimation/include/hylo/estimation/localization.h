@@ -7,9 +7,10 @@
 //  - hybrid mode: after `update_after_s` seconds of localization, registered scans are added
 //    to the map (the run's tree, beside the never-windowed prior), so changed or unexplored
 //    parts of the site extend the map aligned with the prior;
-//  - health: per scan, the fitness (mean squared distance of the registered scan to the map),
-//    the inlier ratio and the number of plane matches; `lost_after_scans` bad scans in a row
-//    (or a user request) start a relocalization: the initializer runs around the current pose.
+//  - health: per scan, from the update's own residuals at its final pose: the share of the
+//    scan's points that lie on a map surface (inlier ratio), their mean squared residual
+//    (fitness) and the number of plane matches; `lost_after_scans` bad scans in a row (or a
+//    user request) start a relocalization: the initializer runs around the current pose.
 //    Each event is recorded for the run's summary.
 
 #include <Eigen/Geometry>
@@ -17,10 +18,8 @@
 #include <limits>
 #include <string>
 
+#include "hylo/estimation/estimator.h"
 #include "hylo/registration/icp_initializer.h"
-#include "hylo/registration/neighbor_search.h"
-#include "hylo/registration/plane_matcher.h"
-#include "hylo/registration/point_types.h"
 
 namespace hylo::estimation {
 
@@ -32,18 +31,16 @@ struct LocalizationOptions {
                                   ///< (localization only), else >= 0
   registration::IcpInitializerOptions icp;  ///< start and relocalization
 
-  // --- health, computed on every scan after the update ---
-  /// A registered point is an inlier when the map surface lies within this of it: the plane of
-  /// its nearest map points (the update's PlaneMatcher settings) when they are planar, else the
-  /// nearest map point, m, > 0. A point-to-point test alone passes scans several degrees off
-  /// in a dense map (balm_scans: 61 % inliers within 0.3 m at 5°, vs 29 % with this test at
-  /// 0.1 m; 96 % at the true pose).
+  // --- health, computed on every scan from the update's residuals ---
+  /// A registered point is an inlier when the plane the update matched it to (its nearest map
+  /// points, PlaneMatcher settings) lies within this of it at the final pose, m (> 0). A
+  /// point-to-point test alone passes scans several degrees off in a dense map (balm_scans:
+  /// 61 % of points within 0.3 m of a map point at 5°).
   double health_inlier_distance_m = 0.1;
-  double health_max_range_m = 1.0;        ///< farther points are left out of the fitness, m,
+  double health_max_range_m = 1.0;        ///< larger residuals are left out of the fitness, m,
                                           ///< >= health_inlier_distance_m
-  int health_max_points = 300;            ///< at most this many points checked per scan (an
-                                          ///< even stride over the sweep), >= 10
-  double min_inlier_ratio = 0.5;          ///< below this a scan is bad, [0, 1]
+  double min_inlier_ratio = 0.5;          ///< below this share of the scan's points a scan is
+                                          ///< bad, [0, 1]
   int min_matches = 50;                   ///< fewer plane matches: the scan is bad, >= 0
   int lost_after_scans = 5;               ///< bad scans in a row before relocalizing, >= 1
   int relocalize_retry_scans = 10;        ///< scans between two failed relocalizations, >= 1
@@ -53,10 +50,11 @@ struct LocalizationOptions {
 
 /// How well one registered scan fits the map (after the update).
 struct ScanHealth {
-  double fitness_m2 = std::numeric_limits<double>::quiet_NaN();  ///< mean squared NN distance of
-                                      ///< the checked points within health_max_range_m, m²
-  double inlier_ratio = 0.0;          ///< checked points with the map surface within
-                                      ///< health_inlier_distance_m, [0, 1]
+  double fitness_m2 = std::numeric_limits<double>::quiet_NaN();  ///< mean squared residual of
+                                                                 ///< the matched points within
+                                                                 ///< health_max_range_m, m²
+  double inlier_ratio = 0.0;          ///< share of the scan's points with their matched plane
+                                      ///< within health_inlier_distance_m, [0, 1]
   std::size_t num_matches = 0;        ///< plane matches of the update
   bool good = false;                  ///< passes min_inlier_ratio and min_matches
 };
@@ -79,11 +77,9 @@ struct LocalizationEvent {
   std::string message;                      ///< one line, why
 };
 
-/// The health of a scan registered into the map frame (`points_map`, taken before the scan
-/// itself is added to the map `planes` searches), given the update's plane matches.
-ScanHealth EvaluateScanHealth(const registration::PointCloud& points_map,
-                              const registration::PlaneMatcher& planes, std::size_t num_matches,
-                              const LocalizationOptions& options);
+/// The health of a scan from its update (residuals at the final pose, taken before the scan
+/// itself is added to the map).
+ScanHealth EvaluateScanHealth(const UpdateSummary& update, const LocalizationOptions& options);
 
 /// "initialized", "initialization_failed", "lost", "relocalized", "relocalization_failed",
 /// "hybrid_started".

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "hylo/estimation/measurements.h"
+#include "hylo/common/sensor_data.h"
 
 namespace hylo::estimation {
 

@@ -17,8 +17,8 @@
 #include <Eigen/Core>
 #include <cstdint>
 
-#include "hylo/estimation/lie/se3.h"
-#include "hylo/estimation/lie/so3.h"
+#include "hylo/lie/se3.h"
+#include "hylo/lie/so3.h"
 
 namespace hylo::estimation {
 

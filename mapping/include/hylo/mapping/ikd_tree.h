@@ -32,8 +32,9 @@
 #include <string>
 #include <vector>
 
+#include "hylo/common/point_types.h"
+#include "hylo/common/voxel_key.h"
 #include "hylo/registration/neighbor_search.h"
-#include "hylo/registration/point_types.h"
 
 namespace hylo::mapping {
 
@@ -42,13 +43,6 @@ struct Box3f {
   Eigen::Vector3f min = Eigen::Vector3f::Zero();  ///< lower corner, m
   Eigen::Vector3f max = Eigen::Vector3f::Zero();  ///< upper corner, m (inclusive)
 };
-
-/// Integer voxel of `point` for edge `voxel_size_m` (floor of point / size, per axis): the rule
-/// shared by IkdTree's on-tree downsampling and registration::UniformSample.
-Eigen::Matrix<int64_t, 3, 1> VoxelOf(const Eigen::Vector3f& point, float voxel_size_m);
-
-/// Centre of voxel `voxel` for edge `voxel_size_m`, m.
-Eigen::Vector3f VoxelCentre(const Eigen::Matrix<int64_t, 3, 1>& voxel, float voxel_size_m);
 
 class IkdTree final : public registration::NeighborSearch {
  public:
@@ -94,15 +88,15 @@ class IkdTree final : public registration::NeighborSearch {
   explicit IkdTree(Options options);
 
   /// Replaces the map by `points` (a balanced tree; non-finite points are dropped).
-  void Build(const registration::PointCloud& points);
+  void Build(const PointCloud& points);
 
   /// Adds `points`. With voxel_size_m > 0 each voxel keeps only the point nearest its centre
   /// (the paper's down-sampling): a new point replaces the voxel's map points only if it is
   /// strictly nearer the centre than all of them.
-  InsertSummary Insert(const registration::PointCloud& points, float voxel_size_m = 0.f);
+  InsertSummary Insert(const PointCloud& points, float voxel_size_m = 0.f);
 
   /// Deletes every map point exactly equal to one of `points`; returns how many were deleted.
-  std::size_t Delete(const registration::PointCloud& points);
+  std::size_t Delete(const PointCloud& points);
 
   /// Deletes every map point inside `box` (closed); returns how many were deleted.
   std::size_t DeleteBox(const Box3f& box);
@@ -115,13 +109,13 @@ class IkdTree final : public registration::NeighborSearch {
               std::vector<registration::Neighbor>* neighbors) const;
 
   /// All map points inside `box` (closed), in tree order.
-  void BoxSearch(const Box3f& box, registration::PointCloud* points) const;
+  void BoxSearch(const Box3f& box, PointCloud* points) const;
 
   /// Number of valid (not deleted) points.
   std::size_t Size() const override;
 
   /// The valid points, in tree order.
-  registration::PointCloud Flatten() const;
+  PointCloud Flatten() const;
 
   /// Heap bytes held by the tree (node and bucket arrays at their capacity, free lists).
   std::size_t MemoryBytes() const;
@@ -174,18 +168,15 @@ class IkdTree final : public registration::NeighborSearch {
   int NewNode();
   int NewBucket();
   void FreeSubtree(int node);
-  void BuildSubtree(int node, registration::PointCloud::iterator begin,
-                    registration::PointCloud::iterator end);
-  void MakeLeaf(int node, registration::PointCloud::const_iterator begin,
-                registration::PointCloud::const_iterator end);
+  void BuildSubtree(int node, PointCloud::iterator begin, PointCloud::iterator end);
+  void MakeLeaf(int node, PointCloud::const_iterator begin, PointCloud::const_iterator end);
   void PullUp(int node);
   void PushDown(int node);
-  void CollectValid(int node, registration::PointCloud* points) const;
+  void CollectValid(int node, PointCloud* points) const;
   bool CheckSubtree(int node, bool labelled, std::string* why) const;  // ikd_tree_check.cpp
   // The down-sampling insert's voxel cache: sets of kCacheWays voxels, each known to hold
   // exactly one valid map point, stored here (the voxel is recomputed from it, VoxelOf); the
   // most recently used first. Kept exact by every update; see ikd_tree_voxel_index.cpp.
-  using VoxelKey = Eigen::Matrix<int64_t, 3, 1>;
   static constexpr int kCacheWays = 4;
   struct alignas(64) CacheSet {  // one cache line
     float x[kCacheWays];
@@ -223,7 +214,7 @@ class IkdTree final : public registration::NeighborSearch {
   void KNearestIn(int node, KnnSearch* search) const;
   void RadiusIn(int node, const Eigen::Vector3f& query, float radius_d2,
                 std::vector<registration::Neighbor>* neighbors) const;
-  void BoxSearchIn(int node, const Box3f& box, registration::PointCloud* points) const;
+  void BoxSearchIn(int node, const Box3f& box, PointCloud* points) const;
   void VoxelSearchIn(int node, VoxelScan* scan) const;
   // ikd_tree_rebuild.cpp
   bool BreaksCriteria(const Node& node) const;
@@ -238,7 +229,7 @@ class IkdTree final : public registration::NeighborSearch {
   std::vector<int> free_buckets_;
   int root_ = -1;
   std::vector<int> path_;                    // scratch: root-to-leaf path of an insert
-  registration::PointCloud scratch_points_;  // scratch: points of a rebuild
+  PointCloud scratch_points_;                // scratch: points of a rebuild
   std::vector<CacheSet> cache_sets_;  // any count (multiply-shift indexing); empty: no cache
   float cache_voxel_m_ = 0.f;          // voxel edge the cache is kept for, m; 0: none
   // Valid points per hash bucket of voxels (saturating at 255, then never decreased): a zero

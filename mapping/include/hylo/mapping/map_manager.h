@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "hylo/common/point_types.h"
 #include "hylo/mapping/ikd_tree.h"
 #include "hylo/registration/neighbor_search.h"
-#include "hylo/registration/point_types.h"
 
 namespace hylo::mapping {
 
@@ -39,11 +39,11 @@ class MapManager final : public registration::NeighborSearch {
   explicit MapManager(const MapManagerOptions& options);
 
   /// Replaces the prior map (map frame, downsampled by the caller). Never windowed.
-  void SetPrior(const registration::PointCloud& points_map);
+  void SetPrior(const PointCloud& points_map);
 
   /// Moves the window if `sensor_position_map` is near its face, then inserts `points_map`
   /// (downsampled on the tree at voxel_size_m).
-  IkdTree::InsertSummary AddScan(const registration::PointCloud& points_map,
+  IkdTree::InsertSummary AddScan(const PointCloud& points_map,
                                  const Eigen::Vector3f& sensor_position_map);
 
   void KNearest(const Eigen::Vector3f& query, int k, float max_distance,
@@ -53,9 +53,9 @@ class MapManager final : public registration::NeighborSearch {
   std::size_t prior_size() const;
   std::size_t run_size() const { return run_.Size(); }
   /// Every point (prior then run), map frame.
-  registration::PointCloud Flatten() const;
+  PointCloud Flatten() const;
   /// Points added during the run only.
-  registration::PointCloud FlattenRun() const { return run_.Flatten(); }
+  PointCloud FlattenRun() const { return run_.Flatten(); }
   std::size_t MemoryBytes() const;
   const MapCounters& counters() const { return counters_; }
   /// The current window (valid once a scan was added with the window enabled).

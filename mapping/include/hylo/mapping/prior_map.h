@@ -1,5 +1,5 @@
 #pragma once
-// The prior map of localization (issue 6): positions as read from a PCD/PLY file (double, so
+// The prior map of localization: positions as read from a PCD/PLY file (double, so
 // UTM coordinates keep their millimetres; the caller reads them with hylo/io/cloud_io.h),
 // shifted by a local origin kept in double so everything downstream computes near zero in
 // float, and downsampled to the map resolution. The localizer works in the local frame
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "hylo/registration/point_types.h"
+#include "hylo/common/point_types.h"
 
 namespace hylo::mapping {
 
@@ -23,7 +23,7 @@ struct PriorMapOptions {
 };
 
 struct PriorMap {
-  registration::PointCloud points_local;  ///< map points - origin_world, downsampled, m
+  PointCloud points_local;  ///< map points - origin_world, downsampled, m
   Eigen::Vector3d origin_world = Eigen::Vector3d::Zero();  ///< world position of local zero, m
   std::size_t num_input = 0;       ///< points given
   std::size_t num_non_finite = 0;  ///< NaN/inf points dropped

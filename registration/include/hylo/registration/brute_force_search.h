@@ -2,8 +2,8 @@
 // Exact neighbour search by scanning every point: the reference that spatial indexes and
 // registration routines are tested against. O(n) per query; not for production use.
 
+#include "hylo/common/point_types.h"
 #include "hylo/registration/neighbor_search.h"
-#include "hylo/registration/point_types.h"
 
 namespace hylo::registration {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "hylo/common/point_types.h"
 #include "hylo/registration/neighbor_search.h"
-#include "hylo/registration/point_types.h"
 
 namespace hylo::registration {
 

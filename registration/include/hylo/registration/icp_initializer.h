@@ -28,9 +28,9 @@
 #include <limits>
 #include <string>
 
+#include "hylo/common/point_types.h"
 #include "hylo/registration/icp.h"
 #include "hylo/registration/neighbor_search.h"
-#include "hylo/registration/point_types.h"
 
 namespace hylo::registration {
 

@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "hylo/registration/point_types.h"
+#include "hylo/common/point_types.h"
 
 namespace hylo::registration {
 

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "hylo/estimation/measurements.h"
+#include "hylo/common/sensor_data.h"
 #include "hylo/io/log_reader.h"
 #include "hylo/io/pointcloud2.h"
 
@@ -26,12 +26,11 @@ class BagWriter {
 
   /// sensor_msgs/Imu: header.stamp = t_ns, linear_acceleration = accel_imu (m/s^2),
   /// angular_velocity = gyro_imu (rad/s), orientation unknown (orientation_covariance[0] = -1).
-  void WriteImu(const std::string& topic, const estimation::ImuSample& imu,
-                const std::string& frame_id);
+  void WriteImu(const std::string& topic, const ImuSample& imu, const std::string& frame_id);
   /// sensor_msgs/PointCloud2 in the field layout of `layout`'s driver (EncodePointCloud2);
   /// `frame_id` replaces scan.frame_id. Receive time = scan.end_t_ns.
-  void WriteScan(const std::string& topic, const estimation::LidarScan& scan,
-                 PointTimeConvention layout, const std::string& frame_id);
+  void WriteScan(const std::string& topic, const LidarScan& scan, PointTimeConvention layout,
+                 const std::string& frame_id);
   /// Any cloud, as given (tests of odd layouts; converters). Receive time `receive_t_ns`.
   void WriteCloud(const std::string& topic, const PointCloud2Message& cloud,
                   int64_t receive_t_ns);

@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "hylo/mapping/grid_map.h"
-#include "hylo/mapping/traversability.h"
+#include "hylo/terrain/grid_map.h"
+#include "hylo/terrain/traversability.h"
 
 namespace hylo::io {
 
@@ -34,22 +34,22 @@ struct MapServerOptions {
 };
 
 /// The PGM grey of a cell for map_server (see the file comment).
-uint8_t MapServerPixel(mapping::CellClass cell_class, float cost, const MapServerOptions& options);
+uint8_t MapServerPixel(terrain::CellClass cell_class, float cost, const MapServerOptions& options);
 
 /// Writes `yaml_path` and the PGM beside it (same name, .pgm; referenced relatively). The
 /// YAML origin is the world position of the lower-left pixel (yaw 0). Throws
 /// std::runtime_error naming the file when it cannot be written, std::invalid_argument for
 /// invalid options or a class/cost size that does not match the grid.
-void WriteMapServer(const std::string& yaml_path, const mapping::GridMap& grid,
-                    const std::vector<mapping::CellClass>& classes,
+void WriteMapServer(const std::string& yaml_path, const terrain::GridMap& grid,
+                    const std::vector<terrain::CellClass>& classes,
                     const MapServerOptions& options = {});
 
 /// RGB colour of a cell in the PNG (see the file comment).
-void CostColour(mapping::CellClass cell_class, float cost, uint8_t rgb[3]);
+void CostColour(terrain::CellClass cell_class, float cost, uint8_t rgb[3]);
 
 /// Writes the coloured costmap PNG. Same errors as WriteMapServer.
-void WriteCostmapPng(const std::string& path, const mapping::GridMap& grid,
-                     const std::vector<mapping::CellClass>& classes);
+void WriteCostmapPng(const std::string& path, const terrain::GridMap& grid,
+                     const std::vector<terrain::CellClass>& classes);
 
 /// PNG file bytes of an RGB8 image (`rgb` = height rows of width * 3 bytes, top row first).
 std::string EncodePngRgb(int width, int height, const std::vector<uint8_t>& rgb);
@@ -61,19 +61,19 @@ uint32_t Adler32(const uint8_t* data, std::size_t size);
 /// Writes one layer as an ESRI ASCII grid; `value_offset` is added to every value (the
 /// elevation layer is stored in the local frame: pass origin_world.z to write world heights).
 /// NaN is written as the NODATA value.
-void WriteAsciiGrid(const std::string& path, const mapping::GridMap& grid, const std::string& layer,
+void WriteAsciiGrid(const std::string& path, const terrain::GridMap& grid, const std::string& layer,
                     double value_offset = 0.0);
 
 /// Reads an ESRI ASCII grid into a one-layer grid named `layer` (origin_world = the file's
 /// lower-left corner, NODATA -> NaN). Accepts xllcenter/yllcenter too. Throws
 /// std::runtime_error naming the file and the reason (missing key, bad or missing values).
-mapping::GridMap ReadAsciiGrid(const std::string& path, const std::string& layer);
+terrain::GridMap ReadAsciiGrid(const std::string& path, const std::string& layer);
 
 /// Every traversability output in `dir` (created if missing): costmap.yaml + costmap.pgm,
 /// costmap.png and layers/<layer>.asc for each grid layer (elevation in world heights).
 /// Returns the written paths.
 std::vector<std::string> WriteTraversabilityFiles(const std::string& dir,
-                                                  const mapping::TraversabilityMap& map,
+                                                  const terrain::TraversabilityMap& map,
                                                   const MapServerOptions& options = {});
 
 }  // namespace hylo::io

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "hylo/estimation/measurements.h"
+#include "hylo/common/sensor_data.h"
 
 namespace hylo::io {
 
@@ -39,8 +39,8 @@ struct LogReadOptions {
 struct LogMessage {
   enum class Kind { kImu, kScan };
   Kind kind = Kind::kImu;
-  estimation::ImuSample imu;    ///< valid when kind == kImu
-  estimation::LidarScan scan;   ///< valid when kind == kScan
+  ImuSample imu;   ///< valid when kind == kImu
+  LidarScan scan;  ///< valid when kind == kScan
 };
 
 /// Counted drops while reading; nothing bad in the data is silently discarded.

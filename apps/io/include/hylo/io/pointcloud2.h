@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "hylo/estimation/measurements.h"
+#include "hylo/common/sensor_data.h"
 #include "hylo/io/log_reader.h"
 
 namespace hylo::io {
@@ -82,15 +82,13 @@ PointTimeConvention DetectPointTimeConvention(const std::vector<PointFieldInfo>&
 /// Throws std::runtime_error with a one-line reason (no file name: callers add it) on a
 /// malformed layout, missing x/y/z, a missing time field for an explicit convention, or
 /// per-point times spanning more than an int32 of nanoseconds.
-estimation::LidarScan DecodePointCloud2(const PointCloud2Message& cloud,
-                                        PointTimeConvention convention,
-                                        std::size_t* dropped_non_finite);
+LidarScan DecodePointCloud2(const PointCloud2Message& cloud, PointTimeConvention convention,
+                            std::size_t* dropped_non_finite);
 
 /// Encodes a scan in the field layout of the driver of `layout` (see the file comment;
 /// kNone writes x y z intensity f32, point_step 16). header.stamp = scan start, except
 /// Robosense (last point) as its driver does. Little-endian, height 1, is_dense true when
 /// every point is finite. `layout` must not be kAuto; Livox needs ring <= 255.
-PointCloud2Message EncodePointCloud2(const estimation::LidarScan& scan,
-                                     PointTimeConvention layout);
+PointCloud2Message EncodePointCloud2(const LidarScan& scan, PointTimeConvention layout);
 
 }  // namespace hylo::io

@@ -15,12 +15,11 @@ namespace hylo::report {
 
 /// What happened to a back-end's run.
 enum class RowStatus {
-  kOk,            ///< the run finished; figures are valid (NaN where not measured)
-  kNotAvailable,  ///< the back-end is not built into this executable
-  kFailed,        ///< the run stopped with an error (see BackendRow::note)
+  kOk,      ///< the run finished; figures are valid (NaN where not measured)
+  kFailed,  ///< the run stopped with an error (see BackendRow::note)
 };
 
-/// "ok", "not available", "failed".
+/// "ok", "failed".
 std::string ToString(RowStatus status);
 
 /// One back-end's figures.

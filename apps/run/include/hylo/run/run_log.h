@@ -5,7 +5,9 @@
 //
 // Files written into out_dir:
 //   config.yaml      the effective configuration
-//   trajectory.tum   T_world_imu per processed scan, stamped at scan end (TUM)
+//   trajectory.tum   T_world_imu per processed scan, stamped at scan end (TUM): the finalized
+//                    states (the smoother's estimate of each scan once it left the window)
+//   trajectory_live.tum  the same scans' live states, as the odometry stream had them
 //   odometry.csv     per scan: pose, body twist, 6×6 pose and twist covariances, health
 //                    (column order documented in the file's header line)
 //   timing.csv       per-scan timing and update figures
@@ -41,9 +43,10 @@ struct RunRequest {
 };
 
 struct RunResult {
-  io::Json summary;                          ///< also written to out_dir/summary.json
-  std::vector<io::StampedPose> trajectory;   ///< T_world_imu, one per processed scan
-  std::vector<double> ms_per_scan;           ///< wall time per processed scan, ms
+  io::Json summary;                              ///< also written to out_dir/summary.json
+  std::vector<io::StampedPose> trajectory;       ///< T_world_imu, finalized, one per scan
+  std::vector<io::StampedPose> live_trajectory;  ///< T_world_imu, live, one per scan
+  std::vector<double> ms_per_scan;               ///< wall time per processed scan, ms
 };
 
 /// The pipeline's counters (scans processed, skipped, not applied, queue drops and gaps) as

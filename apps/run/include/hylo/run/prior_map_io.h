@@ -1,0 +1,29 @@
+#pragma once
+// What every front end (the command line, the ROS node) does with a prior map: read it, thin
+// it, move it to a local origin near zero and give it to the pipeline with the start guess;
+// and write a map of the run back in the map file's own (world) frame.
+
+#include <Eigen/Geometry>
+#include <string>
+
+#include "hylo/common/point_types.h"
+#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/mapping/prior_map.h"
+
+namespace hylo::run {
+
+/// Reads the PCD/PLY map at `path`, thins it with `options`, and starts `pipeline`'s
+/// localization in it from `T_world_imu_guess` (world = the map file's frame). Returns the map
+/// (its origin_world turns every output back into world coordinates). Throws naming the file
+/// when it cannot be read or holds no point.
+mapping::PriorMap LoadPriorMap(const std::string& path, const mapping::PriorMapOptions& options,
+                               const Eigen::Isometry3d& T_world_imu_guess,
+                               estimation::OdometryPipeline* pipeline);
+
+/// Writes `points_map` (map frame, local to `origin_world`) to `path` in world coordinates
+/// (PCD, LZF-compressed; PLY or KITTI .bin by extension). Throws naming the file when it
+/// cannot be written.
+void WriteWorldCloud(const std::string& path, const PointCloud& points_map,
+                     const Eigen::Vector3d& origin_world);
+
+}  // namespace hylo::run

@@ -1,0 +1,29 @@
+#include "hylo/run/prior_map_io.h"
+
+#include "hylo/io/cloud_io.h"
+
+namespace hylo::run {
+
+mapping::PriorMap LoadPriorMap(const std::string& path, const mapping::PriorMapOptions& options,
+                               const Eigen::Isometry3d& T_world_imu_guess,
+                               estimation::OdometryPipeline* pipeline) {
+  mapping::PriorMap prior = mapping::BuildPriorMap(io::ReadCloud(path).positions, options, path);
+  pipeline->SetPriorMap(prior.points_local);
+  pipeline->SetInitialGuess(mapping::PoseToLocal(T_world_imu_guess, prior.origin_world));
+  return prior;
+}
+
+void WriteWorldCloud(const std::string& path, const PointCloud& points_map,
+                     const Eigen::Vector3d& origin_world) {
+  io::CloudFile file;
+  file.positions.reserve(points_map.size());
+  for (const Eigen::Vector3f& p : points_map) {
+    file.positions.push_back(p.cast<double>() + origin_world);
+  }
+  // Compression is a PCD encoding; other formats are written in binary.
+  const bool pcd = path.size() >= 4 && path.compare(path.size() - 4, 4, ".pcd") == 0;
+  io::WriteCloud(path, file,
+                 pcd ? io::CloudEncoding::kBinaryCompressed : io::CloudEncoding::kBinary);
+}
+
+}  // namespace hylo::run

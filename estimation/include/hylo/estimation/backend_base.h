@@ -1,0 +1,42 @@
+#pragma once
+// What every back-end keeps besides its own estimate, written once: the validated options, the
+// live state, the IMU samples since the last update, the constant-velocity model used without
+// an IMU, and the states finalized but not taken yet. A back-end derives from it and
+// implements Initialize, Update, Covariance and Finish (Estimator); prediction, IMU buffering
+// and the hand-over of finalized states are the same for all.
+
+#include <vector>
+
+#include "hylo/estimation/estimator.h"
+#include "hylo/estimation/estimator_options.h"
+#include "hylo/estimation/imu_buffer.h"
+#include "hylo/estimation/imu_options.h"
+#include "hylo/estimation/no_imu_motion.h"
+
+namespace hylo::estimation {
+
+class BackendBase : public Estimator {
+ public:
+  void AddImu(const ImuSample& sample) final { imu_.Add(sample); }
+  NavState PredictAt(int64_t t_ns) const final;
+  bool initialized() const final { return initialized_; }
+  const NavState& state() const final { return state_; }
+  void TakeFinalized(std::vector<NavState>* states) final;
+
+ protected:
+  /// Throws hylo::InternalError naming the field when `options` or `imu` is not valid.
+  BackendBase(const EstimatorOptions& options, const ImuOptions& imu);
+  /// The shared part of Initialize: the live state, a fresh motion model, the IMU samples from
+  /// `state`'s time on.
+  void Restart(const NavState& state);
+
+  const EstimatorOptions options_;
+  const ImuOptions imu_options_;
+  bool initialized_ = false;
+  NavState state_;                      // the live state
+  ImuBuffer imu_;                       // samples since the last update
+  ConstantVelocity constant_velocity_;  // the motion model without an IMU
+  std::vector<NavState> finalized_;     // finalized states not taken yet
+};
+
+}  // namespace hylo::estimation

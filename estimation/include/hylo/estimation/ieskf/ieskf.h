@@ -1,0 +1,61 @@
+#pragma once
+// Iterated error-state Kalman filter on the manifold of NavState: the core of FAST-LIO2
+// (Xu et al., "FAST-LIO2: Fast Direct LiDAR-Inertial Odometry", T-RO 2022, Sec. IV).
+// Propagation with the IMU (or a constant-velocity model without one), then an iterated
+// update with point-to-plane residuals whose gain is computed in the state dimension
+// (Eq. 20 of the paper, written here as the equivalent Gauss-Newton normal equations).
+// A filter never revisits a state, so each state is final as soon as it is updated.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "hylo/estimation/backend_base.h"
+
+namespace hylo::estimation {
+
+/// Compact Jacobian of one point-to-plane residual: [∂r/∂δθ, ∂r/∂δp, ∂r/∂δθ_il, ∂r/∂δt_il]
+/// (the only non-zero blocks of the 24-wide row).
+using ResidualJacobian = Eigen::Matrix<double, 1, 12>;
+
+/// r = nᵀ·(R_map_imu·(T_imu_lidar·p_lidar) + p_map_imu) + offset, and its Jacobian.
+double PointToPlaneResidual(const NavState& x, const Eigen::Vector3d& point_lidar,
+                            const registration::Plane& plane, ResidualJacobian* jacobian);
+
+class Ieskf final : public BackendBase {
+ public:
+  /// Throws hylo::InternalError naming the field when `options` or `imu` is not valid.
+  Ieskf(const EstimatorOptions& options, const ImuOptions& imu) : BackendBase(options, imu) {}
+
+  void Initialize(const NavState& state, const StateCovariance& covariance) override;
+  UpdateSummary Update(const DeskewedScan& scan, const registration::PlaneMatcher& planes) override;
+  StateCovariance Covariance() const override { return P_; }
+  PoseCovariance6 PoseCovariance() const override { return PoseBlock(P_); }
+  void Finish() override {}  // every state was final as soon as it was updated
+
+ private:
+  // Normal equations of the lidar residuals over the compact 12 columns.
+  struct LidarSystem {
+    Eigen::Matrix<double, 12, 12> HtH = Eigen::Matrix<double, 12, 12>::Zero();
+    Eigen::Matrix<double, 12, 1> Htr = Eigen::Matrix<double, 12, 1>::Zero();
+    std::size_t matches = 0;
+  };
+
+  void Propagate(int64_t t_ns);                  // ieskf.cpp
+  void PropagateConstantVelocity(int64_t t_ns);  // ieskf.cpp
+  // ieskf_update.cpp
+  void Correct(const DeskewedScan& scan, const registration::PlaneMatcher& planes,
+               UpdateSummary* summary);
+  void Associate(const NavState& x, const DeskewedScan& scan,
+                 const registration::PlaneMatcher& planes);
+  LidarSystem BuildLidarSystem(const NavState& x, const DeskewedScan& scan,
+                               const registration::PlaneMatcher& planes) const;
+  void ReportFit(const NavState& x, const DeskewedScan& scan,
+                 const registration::PlaneMatcher& planes, UpdateSummary* summary) const;
+  int ActiveDim() const;
+
+  StateCovariance P_ = StateCovariance::Identity();
+  std::vector<registration::Plane> planes_;  // per scan point, valid where matched_[i]
+  std::vector<char> matched_;
+};
+
+}  // namespace hylo::estimation

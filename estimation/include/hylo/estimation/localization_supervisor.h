@@ -1,0 +1,102 @@
+#pragma once
+// Localization in a prior map, for every back-end alike (Alamanos et al., Sec. III, and
+// localization.h): the ICP start from the static scans, the scans' health, loss and
+// relocalization, the hybrid start of map updates, the REP-105 odom frame and the events of a
+// run. The pipeline owns one when it is given an initial guess and asks it at three moments:
+// while starting (AddStaticScan, Start), after each update (Supervise), and before adding a
+// scan to the map (MapUpdateAllowed).
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hylo/common/point_types.h"
+#include "hylo/common/sensor_data.h"
+#include "hylo/estimation/estimator.h"
+#include "hylo/estimation/imu_initializer.h"
+#include "hylo/estimation/initial_uncertainty.h"
+#include "hylo/estimation/localization.h"
+#include "hylo/estimation/scan_result.h"
+#include "hylo/registration/icp_initializer.h"
+#include "hylo/registration/neighbor_search.h"
+
+namespace hylo::estimation {
+
+class LocalizationSupervisor {
+ public:
+  LocalizationSupervisor(const LocalizationOptions& options, const InitialUncertainty& uncertainty,
+                         const Eigen::Isometry3d& T_map_imu_guess);
+
+  /// Relocalize around `T_map_imu_guess` with the next scan (e.g. ROS /initialpose); before
+  /// the start it replaces the initial guess.
+  void RequestRelocalization(const Eigen::Isometry3d& T_map_imu_guess);
+
+  // --- the start ---
+  /// Adds one static scan (IMU frame, m) whose IMU data ends at `imu_end_t_ns` (0: none).
+  void AddStaticScan(const PointCloud& points_imu, int64_t imu_end_t_ns);
+  int static_scans() const { return static_.scans; }
+  /// Registers the static scans to `map` and, when the initializer accepts a pose, starts
+  /// `estimator` there. `start` carries time (the last static IMU stamp is used when there is
+  /// one), biases, gravity and extrinsic; with `gravity_known` its roll and pitch (from the IMU
+  /// at rest) replace the guess's. False with *why when no pose was accepted.
+  bool Start(NavState start, bool gravity_known, const registration::NeighborSearch& map,
+             Estimator* estimator, std::string* why);
+
+  // --- every scan after the start ---
+  /// Judges the scan by `result->health` (from its update), counts bad scans, declares the
+  /// vehicle lost, and relocalizes on request or while lost; an accepted relocalization starts
+  /// `estimator` again at the initializer's pose, which `result` then carries. `sweep_imu`
+  /// gives the whole scan in the IMU frame at its end (asked for only to relocalize).
+  void Supervise(const std::function<PointCloud()>& sweep_imu,
+                 const registration::NeighborSearch& map, Estimator* estimator, ScanResult* result);
+  /// Hybrid mode: whether the scan of `result` may extend the map.
+  bool MapUpdateAllowed(const ScanResult& result);
+
+  bool lost() const { return lost_; }
+  /// map → odom (REP-105): relocalization jumps go here, so odom → imu stays continuous.
+  const lie::SE3d& T_map_odom() const { return T_map_odom_; }
+  const std::vector<LocalizationEvent>& events() const { return events_; }
+  std::size_t scans_initializer() const { return scans_initializer_; }
+  std::size_t scans_bad_health() const { return scans_bad_health_; }
+
+ private:
+  struct StaticScans {
+    PointCloud points_imu;  // accumulated static scans, IMU frame
+    int scans = 0;
+    int64_t imu_end_t_ns = 0;  // last IMU stamp of the static scans
+  };
+
+  bool Relocalize(const PointCloud& sweep_imu, const registration::NeighborSearch& map,
+                  const Eigen::Isometry3d& T_map_imu_guess, Estimator* estimator);
+  void AddEvent(LocalizationEvent::Kind kind, int64_t t_ns, const std::string& message,
+                const Eigen::Isometry3d& T_map_imu,
+                const registration::IcpInitializerResult* icp = nullptr);
+
+  LocalizationOptions options_;
+  InitialUncertainty uncertainty_;
+  registration::IcpInitializer icp_initializer_;
+  Eigen::Isometry3d guess_;  // T_map_imu at the start
+  StaticScans static_;
+  std::optional<Eigen::Isometry3d> relocalize_request_;  // T_map_imu
+  int bad_scans_in_row_ = 0;
+  int scans_until_retry_ = 0;
+  bool lost_ = false;
+  bool started_ = false;
+  int64_t start_t_ns_ = 0;
+  bool hybrid_started_ = false;
+  lie::SE3d T_map_odom_;
+  std::vector<LocalizationEvent> events_;
+  std::size_t scans_initializer_ = 0;  // static scans and relocalization attempts
+  std::size_t scans_bad_health_ = 0;
+};
+
+/// True when the IMU samples `imu` say the vehicle is still at rest, judged with the static
+/// initialisation's thresholds against its gyro bias (`imu_start`) and `gravity_mps2`.
+bool ImuAtRest(const std::vector<ImuSample>& imu, const NavState& imu_start,
+               const ImuInitializerOptions& init, double gravity_mps2);
+
+}  // namespace hylo::estimation

@@ -1,0 +1,75 @@
+#pragma once
+// Sliding-window smoother back-end: the last N scan states (pose, velocity, gyro and accel
+// biases) optimised together with Ceres over
+//   - IMU preintegration factors between consecutive states (imu_preintegration.h) whose
+//     15-row residual includes the bias random walk, or without an IMU a constant-velocity
+//     factor over three consecutive poses;
+//   - point-to-plane factors of every scan in the window against the shared map planes;
+//   - a Gaussian prior from marginalising the states that left the window (marginalization.h).
+// With an IMU the gravity vector is estimated too (one block shared by the window, as the
+// IESKF's δg); the extrinsic is held at its initial value.
+//
+// Plane association: only the newest scan is associated again between solver rounds. Once a
+// scan has been registered the pipeline inserts its points into the map, so searching the map
+// again for an older scan would find its own points and fit planes through them, which pins
+// the pose instead of measuring it; older scans keep the planes found while they were newest
+// (their residuals still move with their poses).
+//
+// A state is final when it leaves the window (marginalised) or when the log ends (Finish):
+// until then each later scan can still correct it, so the finalized trajectory is smoothed
+// while the live state is the window's newest.
+
+#include <deque>
+#include <memory>
+#include <vector>
+
+#include "hylo/estimation/backend_base.h"
+
+namespace hylo::estimation {
+
+struct WindowState;    // sliding_window.cpp
+struct MarginalPrior;  // marginalization.h
+
+class SlidingWindow final : public BackendBase {
+ public:
+  /// Throws hylo::InternalError naming the field when `options` or `imu` is not valid.
+  SlidingWindow(const EstimatorOptions& options, const ImuOptions& imu);
+  ~SlidingWindow() override;
+
+  /// Clears the window and starts again from `state` (also used on relocalization).
+  void Initialize(const NavState& state, const StateCovariance& covariance) override;
+  UpdateSummary Update(const DeskewedScan& scan, const registration::PlaneMatcher& planes) override;
+  StateCovariance Covariance() const override { return covariance_; }
+  void Finish() override { FinalizeWindow(); }
+
+  /// States currently in the window, oldest first (for tests and diagnostics).
+  std::vector<NavState> WindowStates() const;
+
+ private:
+  struct SolveReport {
+    int iterations = 0;
+    bool converged = false;
+  };
+
+  void AppendState(const DeskewedScan& scan);  // sliding_window.cpp
+  void SetNewestScan(const DeskewedScan& scan);
+  void MarginalizeOldest();  // sliding_window.cpp
+  void Correct(const registration::PlaneMatcher& planes, UpdateSummary* summary);
+  void Solve(SolveReport* report, double budget_s);  // sliding_window_solve.cpp
+  std::size_t AssociateNewest(const registration::PlaneMatcher& planes);
+  void Reweight();
+  void FinishUpdate(UpdateSummary* summary);
+  void ComputeCovariance();
+  NavState StateAt(std::size_t index) const;
+  void FinalizeWindow();                // every scan state still in the window
+  std::vector<double*> GlobalBlocks();  // blocks shared by the window (gravity with an IMU)
+
+  // state_ (BackendBase) is the newest state (time, gravity, extrinsic included).
+  double gravity_map_[3] = {0.0, 0.0, -9.81};  // estimated gravity block (IMU mode), m/s²
+  StateCovariance covariance_ = StateCovariance::Identity();
+  StateCovariance initial_covariance_ = StateCovariance::Identity();
+  std::deque<std::unique_ptr<WindowState>> window_;  // oldest first; stable block addresses
+  std::unique_ptr<MarginalPrior> prior_;
+};
+
+}  // namespace hylo::estimation

@@ -1,0 +1,35 @@
+#include "hylo/estimation/backend_base.h"
+
+#include <iterator>
+
+#include "hylo/common/check.h"
+#include "hylo/estimation/imu_propagation.h"
+
+namespace hylo::estimation {
+
+BackendBase::BackendBase(const EstimatorOptions& options, const ImuOptions& imu)
+    : options_(options), imu_options_(imu), imu_(imu.enabled) {
+  std::string why;
+  if (!options_.IsValid(&why)) throw InternalError("invalid options: " + why);
+  if (!imu_options_.IsValid(&why)) throw InternalError("invalid options: imu." + why);
+}
+
+void BackendBase::Restart(const NavState& state) {
+  state_ = state;
+  constant_velocity_.Reset();
+  initialized_ = true;
+  imu_.DropBefore(state.t_ns);
+}
+
+NavState BackendBase::PredictAt(int64_t t_ns) const {
+  return PredictNominal(state_, imu_.samples(), imu_options_.enabled,
+                        constant_velocity_.omega_imu(), t_ns);
+}
+
+void BackendBase::TakeFinalized(std::vector<NavState>* states) {
+  states->insert(states->end(), std::make_move_iterator(finalized_.begin()),
+                 std::make_move_iterator(finalized_.end()));
+  finalized_.clear();
+}
+
+}  // namespace hylo::estimation

@@ -1,0 +1,176 @@
+// IESKF iterated update (FAST-LIO2 Sec. IV-D). Each iteration j linearises the point-to-plane
+// residuals r at x_j and minimises ‖x_j ⊞ δ ⊟ x̂‖²_P⁻¹ + ‖r + H δ‖²_R⁻¹ over δ:
+//   (Jᵀ P⁻¹ J + Hᵀ R⁻¹ H) δ = −(Jᵀ P⁻¹ (x_j ⊟ x̂) + Hᵀ R⁻¹ r)
+// with J = ∂(x_j ⊞ δ ⊟ x̂)/∂δ (Jr⁻¹ on the rotation blocks). This is the paper's Eq. (18)-(20)
+// (gain in the state dimension, cost independent of the number of points) written as the
+// normal equations; the posterior covariance is their inverse, i.e. (I − K H) P_j.
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+
+#include "hylo/estimation/ieskf/ieskf.h"
+#include "hylo/estimation/lidar_update.h"
+
+namespace hylo::estimation {
+
+using namespace state_index;  // NOLINT: index names only
+using lie::SO3d;
+using registration::Plane;
+
+double PointToPlaneResidual(const NavState& x, const Eigen::Vector3d& point_lidar,
+                            const Plane& plane, ResidualJacobian* jacobian) {
+  const Eigen::Vector3d point_imu = x.T_imu_lidar * point_lidar;
+  const Eigen::Vector3d point_map = x.R_map_imu * point_imu + x.p_map_imu;
+  if (jacobian != nullptr) {
+    // R·Exp(δθ)·q ≈ R q − R [q]^ δθ, so ∂r/∂δθ = −nᵀ R [q]^ = (q × Rᵀn)ᵀ.
+    const Eigen::Vector3d n_imu = x.R_map_imu.Inverse() * plane.normal;
+    const Eigen::Vector3d n_lidar = x.T_imu_lidar.so3().Inverse() * n_imu;
+    jacobian->block<1, 3>(0, 0) = point_imu.cross(n_imu).transpose();
+    jacobian->block<1, 3>(0, 3) = plane.normal.transpose();
+    jacobian->block<1, 3>(0, 6) = point_lidar.cross(n_lidar).transpose();
+    jacobian->block<1, 3>(0, 9) = n_imu.transpose();
+  }
+  return plane.Distance(point_map);
+}
+
+int Ieskf::ActiveDim() const { return options_.ieskf.online_extrinsic ? kDim : kDimNoExtrinsic; }
+
+void Ieskf::Associate(const NavState& x, const DeskewedScan& scan,
+                      const registration::PlaneMatcher& planes) {
+  const std::size_t n = scan.points_lidar.size();
+  planes_.resize(n);
+  matched_.assign(n, 0);
+  const lie::SE3d T_map_lidar = x.T_map_lidar();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d p_map = T_map_lidar * scan.points_lidar[i].cast<double>();
+    matched_[i] = planes.Match(p_map, &planes_[i]) ? 1 : 0;
+  }
+}
+
+Ieskf::LidarSystem Ieskf::BuildLidarSystem(const NavState& x, const DeskewedScan& scan,
+                                           const registration::PlaneMatcher& planes) const {
+  LidarSystem system;
+  ResidualJacobian h;
+  for (std::size_t i = 0; i < scan.points_lidar.size(); ++i) {
+    if (!matched_[i]) continue;
+    const Eigen::Vector3d p = scan.points_lidar[i].cast<double>();
+    const double r = PointToPlaneResidual(x, p, planes_[i], &h);
+    if (!planes.PassesGate(r, p.norm())) continue;
+    system.HtH.noalias() += h.transpose() * h;
+    system.Htr.noalias() += h.transpose() * r;
+    ++system.matches;
+  }
+  return system;
+}
+
+void Ieskf::ReportFit(const NavState& x, const DeskewedScan& scan,
+                      const registration::PlaneMatcher& planes, UpdateSummary* summary) const {
+  LidarFit fit(scan.points_lidar.size());
+  const lie::SO3d R_imu_map = x.R_map_imu.Inverse();
+  for (std::size_t i = 0; i < scan.points_lidar.size(); ++i) {
+    if (!matched_[i]) continue;
+    const Eigen::Vector3d p = scan.points_lidar[i].cast<double>();
+    const double r = PointToPlaneResidual(x, p, planes_[i], nullptr);
+    fit.Add(i, x.T_imu_lidar * p, R_imu_map * planes_[i].normal, r, planes.PassesGate(r, p.norm()));
+  }
+  fit.Report(options_.lidar_update, summary);
+}
+
+namespace {
+
+// Scatters the compact 12-column lidar system into the active state dimension.
+void AddLidarSystem(const Eigen::Matrix<double, 12, 12>& HtH,
+                    const Eigen::Matrix<double, 12, 1>& Htr, double weight, int dim,
+                    Eigen::MatrixXd* A, Eigen::VectorXd* b) {
+  const int index[4] = {kRotation, kPosition, kExtrinsicRotation, kExtrinsicTranslation};
+  const int blocks = dim == kDim ? 4 : 2;
+  for (int i = 0; i < blocks; ++i) {
+    b->segment<3>(index[i]) += weight * Htr.segment<3>(3 * i);
+    for (int j = 0; j < blocks; ++j) {
+      A->block<3, 3>(index[i], index[j]) += weight * HtH.block<3, 3>(3 * i, 3 * j);
+    }
+  }
+}
+
+// J⁻¹... J = ∂(x ⊞ δ ⊟ x̂)/∂δ: identity except Jr⁻¹(dθ) on the rotation blocks.
+Eigen::MatrixXd PriorJacobian(const StateVector& dx, int dim) {
+  Eigen::MatrixXd J = Eigen::MatrixXd::Identity(dim, dim);
+  J.block<3, 3>(kRotation, kRotation) = SO3d::RightJacobianInverse(dx.segment<3>(kRotation));
+  if (dim == kDim) {
+    J.block<3, 3>(kExtrinsicRotation, kExtrinsicRotation) =
+        SO3d::RightJacobianInverse(dx.segment<3>(kExtrinsicRotation));
+  }
+  return J;
+}
+
+}  // namespace
+
+UpdateSummary Ieskf::Update(const DeskewedScan& scan, const registration::PlaneMatcher& planes) {
+  UpdateSummary summary;
+  summary.num_points = scan.points_lidar.size();
+  if (!initialized_) {
+    summary.message = "estimator not initialised";
+    return summary;
+  }
+  const NavState before = state_;
+  Propagate(scan.t_ns);
+  if (planes.map().Size() == 0) {
+    summary.message = "map is empty: prediction only";
+  } else {
+    Correct(scan, planes, &summary);
+    if (summary.applied && !imu_options_.enabled) constant_velocity_.Learn(before, &state_);
+  }
+  finalized_.push_back(state_);
+  return summary;
+}
+
+void Ieskf::Correct(const DeskewedScan& scan, const registration::PlaneMatcher& planes,
+                    UpdateSummary* summary) {
+  const int dim = ActiveDim();
+  const NavState prior = state_;
+  const Eigen::MatrixXd P_prior = P_.topLeftCorner(dim, dim);
+  const Eigen::MatrixXd P_prior_inv = P_prior.ldlt().solve(Eigen::MatrixXd::Identity(dim, dim));
+  const LidarUpdateOptions& lidar = options_.lidar_update;
+  const double weight = 1.0 / (lidar.lidar_noise_m * lidar.lidar_noise_m);
+  NavState x = prior;
+  if (!imu_options_.enabled && options_.no_imu.yaw_search_deg > 0.0) {
+    x = SearchYaw(prior, options_.no_imu, [&](const NavState& candidate) {
+      Associate(candidate, scan, planes);
+      return BuildLidarSystem(candidate, scan, planes).matches;
+    });
+  }
+  Eigen::MatrixXd A;
+  bool rematch = true;
+  for (int it = 0; it < options_.ieskf.max_iterations; ++it) {
+    if (rematch) Associate(x, scan, planes);
+    const LidarSystem system = BuildLidarSystem(x, scan, planes);
+    summary->iterations = it + 1;
+    summary->num_matches = system.matches;
+    if (static_cast<int>(system.matches) < lidar.min_matches) {
+      summary->message = TooFewMatchesMessage(system.matches, lidar.min_matches);
+      return;  // the prediction stands
+    }
+    const StateVector dx = BoxMinus(x, prior);
+    const Eigen::MatrixXd J = PriorJacobian(dx, dim);
+    A = J.transpose() * P_prior_inv * J;
+    Eigen::VectorXd b = J.transpose() * (P_prior_inv * dx.head(dim));
+    AddLidarSystem(system.HtH, system.Htr, weight, dim, &A, &b);
+    const Eigen::VectorXd step = -A.ldlt().solve(b);
+    StateVector delta = StateVector::Zero();
+    delta.head(dim) = step;
+    x = BoxPlus(x, delta);
+    const double rot = delta.segment<3>(kRotation).norm();
+    const double trans = delta.segment<3>(kPosition).norm();
+    summary->converged = rot < options_.ieskf.convergence_rotation_rad &&
+                         trans < options_.ieskf.convergence_translation_m;
+    rematch = std::max(rot, trans) > options_.ieskf.rematch_threshold;
+    if (summary->converged) break;
+  }
+  state_ = x;
+  const Eigen::MatrixXd P_post = A.ldlt().solve(Eigen::MatrixXd::Identity(dim, dim));
+  P_.topLeftCorner(dim, dim) = 0.5 * (P_post + P_post.transpose());
+  summary->applied = true;
+  ReportFit(x, scan, planes, summary);
+}
+
+}  // namespace hylo::estimation

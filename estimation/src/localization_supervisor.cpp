@@ -1,0 +1,186 @@
+// Localization in a prior map: the ICP start, health and loss, relocalization, hybrid mode
+// (localization_supervisor.h).
+#include "hylo/estimation/localization_supervisor.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "hylo/common/time.h"
+
+namespace hylo::estimation {
+namespace {
+
+double YawOf(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
+
+lie::SE3d ToSE3(const Eigen::Isometry3d& T) {
+  return lie::SE3d(lie::SO3d::FromMatrix(T.rotation()), T.translation());
+}
+
+Eigen::Isometry3d ToIsometry(const lie::SE3d& T) {
+  Eigen::Isometry3d iso = Eigen::Isometry3d::Identity();
+  iso.linear() = T.so3().Matrix();
+  iso.translation() = T.translation();
+  return iso;
+}
+
+}  // namespace
+
+bool ImuAtRest(const std::vector<ImuSample>& imu, const NavState& imu_start,
+               const ImuInitializerOptions& init, double gravity_mps2) {
+  if (imu.empty()) return false;
+  Eigen::Vector3d gyro_mean = Eigen::Vector3d::Zero();
+  double accel_norm_mean = 0.0;
+  for (const ImuSample& s : imu) {
+    gyro_mean += s.gyro_imu;
+    accel_norm_mean += s.accel_imu.norm();
+  }
+  const double n = static_cast<double>(imu.size());
+  gyro_mean /= n;
+  accel_norm_mean /= n;
+  return (gyro_mean - imu_start.gyro_bias).norm() < init.max_gyro_mean_radps &&
+         std::abs(accel_norm_mean - gravity_mps2) < init.gravity_tolerance_mps2;
+}
+
+LocalizationSupervisor::LocalizationSupervisor(const LocalizationOptions& options,
+                                               const InitialUncertainty& uncertainty,
+                                               const Eigen::Isometry3d& T_map_imu_guess)
+    : options_(options),
+      uncertainty_(uncertainty),
+      icp_initializer_(options.icp),
+      guess_(T_map_imu_guess) {}
+
+void LocalizationSupervisor::RequestRelocalization(const Eigen::Isometry3d& T_map_imu_guess) {
+  if (!started_) {
+    guess_ = T_map_imu_guess;  // the start uses it
+    return;
+  }
+  relocalize_request_ = T_map_imu_guess;
+}
+
+void LocalizationSupervisor::AddStaticScan(const PointCloud& points_imu, int64_t imu_end_t_ns) {
+  static_.points_imu.insert(static_.points_imu.end(), points_imu.begin(), points_imu.end());
+  if (imu_end_t_ns != 0) static_.imu_end_t_ns = imu_end_t_ns;
+  ++static_.scans;
+  ++scans_initializer_;
+}
+
+bool LocalizationSupervisor::Start(NavState start, bool gravity_known,
+                                   const registration::NeighborSearch& map, Estimator* estimator,
+                                   std::string* why) {
+  Eigen::Isometry3d guess = guess_;
+  if (gravity_known) {
+    // Roll and pitch from gravity, yaw and position from the user's guess.
+    const Eigen::Vector3d up_imu = start.R_map_imu.Matrix().transpose() * Eigen::Vector3d::UnitZ();
+    guess = registration::GuessFromGravity(guess_.translation(), YawOf(guess_.rotation()), up_imu);
+    start.t_ns = static_.imu_end_t_ns;
+  }
+  const registration::IcpInitializerResult icp =
+      icp_initializer_.Initialize(static_.points_imu, map, guess);
+  const int scans = static_.scans;
+  static_ = StaticScans();
+  if (!icp.accepted) {
+    *why = "ICP initializer rejected the start (" + std::to_string(scans) +
+           " static scans): " + icp.message;
+    AddEvent(LocalizationEvent::Kind::kInitializationFailed, start.t_ns, icp.message,
+             Eigen::Isometry3d::Identity(), &icp);
+    return false;
+  }
+  const lie::SE3d T_map_imu = ToSE3(icp.T_map_imu);
+  start.R_map_imu = T_map_imu.so3();
+  start.p_map_imu = T_map_imu.translation();
+  start.v_map_imu.setZero();
+  estimator->Initialize(start, uncertainty_.LocalizedCovariance());
+  start_t_ns_ = start.t_ns;
+  started_ = true;
+  AddEvent(LocalizationEvent::Kind::kInitialized, start.t_ns, icp.message, icp.T_map_imu, &icp);
+  return true;
+}
+
+void LocalizationSupervisor::Supervise(const std::function<PointCloud()>& sweep_imu,
+                                       const registration::NeighborSearch& map,
+                                       Estimator* estimator, ScanResult* result) {
+  const ScanHealth& health = result->health;
+  if (!health.good) ++scans_bad_health_;
+  bad_scans_in_row_ = health.good ? 0 : bad_scans_in_row_ + 1;
+  if (lost_ && health.good) lost_ = false;
+  if (!lost_ && bad_scans_in_row_ >= options_.lost_after_scans) {
+    lost_ = true;
+    scans_until_retry_ = 0;
+    std::ostringstream os;
+    os << bad_scans_in_row_ << " bad scans in a row (inlier ratio " << health.inlier_ratio << ", "
+       << health.num_matches << " matches)";
+    AddEvent(LocalizationEvent::Kind::kLost, result->t_ns, os.str(),
+             ToIsometry(result->state.T_map_imu()));
+  }
+  std::optional<Eigen::Isometry3d> guess;
+  guess.swap(relocalize_request_);
+  if (!guess && lost_ && scans_until_retry_-- <= 0) {
+    guess = ToIsometry(estimator->state().T_map_imu());  // search around where we are
+  }
+  if (!guess) return;
+  if (Relocalize(sweep_imu(), map, *guess, estimator)) {
+    result->state = estimator->state();
+    result->pose_covariance = estimator->PoseCovariance();
+  } else if (lost_) {
+    scans_until_retry_ = options_.relocalize_retry_scans;
+  }
+}
+
+bool LocalizationSupervisor::Relocalize(const PointCloud& sweep_imu,
+                                        const registration::NeighborSearch& map,
+                                        const Eigen::Isometry3d& T_map_imu_guess,
+                                        Estimator* estimator) {
+  const NavState before = estimator->state();
+  ++scans_initializer_;
+  const registration::IcpInitializerResult icp =
+      icp_initializer_.Initialize(sweep_imu, map, T_map_imu_guess);
+  if (!icp.accepted) {
+    AddEvent(LocalizationEvent::Kind::kRelocalizationFailed, before.t_ns, icp.message,
+             ToIsometry(before.T_map_imu()), &icp);
+    return false;
+  }
+  NavState x = before;
+  const lie::SE3d T_map_imu = ToSE3(icp.T_map_imu);
+  x.R_map_imu = T_map_imu.so3();
+  x.p_map_imu = T_map_imu.translation();
+  x.v_map_imu = x.R_map_imu * (before.R_map_imu.Inverse() * before.v_map_imu);  // body velocity
+  estimator->Initialize(x, uncertainty_.LocalizedCovariance());
+  // REP-105: odom→imu stays continuous, the jump goes into map→odom.
+  const lie::SE3d T_odom_imu_before = T_map_odom_.Inverse() * before.T_map_imu();
+  T_map_odom_ = x.T_map_imu() * T_odom_imu_before.Inverse();
+  bad_scans_in_row_ = 0;
+  lost_ = false;
+  AddEvent(LocalizationEvent::Kind::kRelocalized, x.t_ns, icp.message, icp.T_map_imu, &icp);
+  return true;
+}
+
+bool LocalizationSupervisor::MapUpdateAllowed(const ScanResult& result) {
+  const double after_s = options_.update_after_s;
+  if (after_s < 0.0 || NanosToSeconds(result.t_ns - start_t_ns_) < after_s) return false;
+  if (!hybrid_started_) {
+    hybrid_started_ = true;
+    AddEvent(LocalizationEvent::Kind::kHybridStarted, result.t_ns,
+             "registered scans are added to the map from now on",
+             ToIsometry(result.state.T_map_imu()));
+  }
+  // Only scans that fit the map extend it: a scan registered while lost would corrupt it.
+  return result.update.applied && result.health.good && !lost_;
+}
+
+void LocalizationSupervisor::AddEvent(LocalizationEvent::Kind kind, int64_t t_ns,
+                                      const std::string& message,
+                                      const Eigen::Isometry3d& T_map_imu,
+                                      const registration::IcpInitializerResult* icp) {
+  LocalizationEvent event;
+  event.kind = kind;
+  event.t_ns = t_ns;
+  event.T_map_imu = T_map_imu;
+  if (icp != nullptr) {
+    event.fitness_m2 = icp->accepted ? icp->fitness_score_m2 : icp->best_fitness_score_m2;
+    event.inlier_ratio = icp->accepted ? icp->inlier_ratio : icp->best_inlier_ratio;
+  }
+  event.message = message;
+  events_.push_back(event);
+}
+
+}  // namespace hylo::estimation

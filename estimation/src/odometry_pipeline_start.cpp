@@ -1,0 +1,132 @@
+// How the pipeline starts: the static IMU initialisation, then either SLAM from the levelled
+// IMU pose, or localization from the pose the ICP initializer accepts in the prior map.
+//
+// With an IMU the scans taken while it initialises are dropped (SLAM) or, with a prior map,
+// accumulated for the ICP start until init_scans static scans are there or the vehicle moves.
+// Without an IMU nothing says the vehicle is at rest: the first scan starts the run (SLAM at
+// the identity, localization from the first scan alone) and is then processed as any other.
+#include "hylo/common/check.h"
+#include "hylo/estimation/odometry_pipeline.h"
+
+namespace hylo::estimation {
+
+void OdometryPipeline::SetPriorMap(const PointCloud& points_map) {
+  HYLO_CHECK(status_ == Status::kInitializing && counters_.scans_processed == 0);
+  map_.SetPrior(points_map);
+}
+
+void OdometryPipeline::SetInitialGuess(const Eigen::Isometry3d& T_map_imu_guess) {
+  HYLO_CHECK(status_ == Status::kInitializing);
+  supervisor_ = std::make_unique<LocalizationSupervisor>(
+      options_.localization, options_.initial_uncertainty, T_map_imu_guess);
+}
+
+void OdometryPipeline::RequestRelocalization(const Eigen::Isometry3d& T_map_imu_guess) {
+  if (!supervisor_) {
+    SetInitialGuess(T_map_imu_guess);
+    return;
+  }
+  supervisor_->RequestRelocalization(T_map_imu_guess);
+}
+
+void OdometryPipeline::Fail(const std::string& why) {
+  status_ = Status::kFailed;
+  message_ = why;
+}
+
+bool OdometryPipeline::Start(const MeasurementGroup& group) {
+  if (map_.prior_size() > 0 && !supervisor_) {
+    Fail("a prior map was given without an initial guess (SetInitialGuess)");
+    return true;
+  }
+  if (!options_.imu.enabled) return StartWithoutImu(group);
+  const bool imu_was_ready = imu_initializer_.status() == ImuInitializer::Status::kDone;
+  if (!imu_was_ready) {
+    const std::size_t used = FeedImuInitializer(group);
+    if (imu_initializer_.status() == ImuInitializer::Status::kFailed) {
+      Fail(imu_initializer_.message());
+      return true;
+    }
+    if (!supervisor_) {
+      // The scan that completed the initialisation started before it: dropped.
+      if (imu_initializer_.status() == ImuInitializer::Status::kDone && used > 0) {
+        StartSlam(imu_initializer_.state(), {group.imu.begin() + (used - 1), group.imu.end()});
+      }
+      return true;
+    }
+  }
+  // Localization: static scans feed the ICP start; a scan in which the vehicle moves ends the
+  // accumulation and is processed from the accepted pose.
+  const bool imu_ready = imu_initializer_.status() == ImuInitializer::Status::kDone;
+  if (!imu_ready ||
+      ImuAtRest(group.imu, imu_initializer_.state(), options_.init, options_.imu.gravity_mps2)) {
+    AddStaticScan(group);
+  } else if (imu_was_ready) {
+    StartLocalization(group);
+    return status_ != Status::kRunning;
+  }
+  if (imu_ready && supervisor_->static_scans() >= options_.localization.init_scans) {
+    StartLocalization(group);
+  }
+  return true;
+}
+
+bool OdometryPipeline::StartWithoutImu(const MeasurementGroup& group) {
+  if (supervisor_) {
+    AddStaticScan(group);
+    StartLocalization(group);
+    return status_ != Status::kRunning;
+  }
+  NavState x;
+  x.t_ns = group.scan.t_ns;  // the first scan then registers at its own end time
+  x.gravity_map = Eigen::Vector3d(0.0, 0.0, -options_.imu.gravity_mps2);
+  StartSlam(x, {});
+  return false;
+}
+
+std::size_t OdometryPipeline::FeedImuInitializer(const MeasurementGroup& group) {
+  std::size_t used = 0;
+  for (const ImuSample& s : group.imu) {
+    ++used;
+    if (imu_initializer_.Add(s) != ImuInitializer::Status::kCollecting) break;
+  }
+  return used;
+}
+
+void OdometryPipeline::StartSlam(const NavState& start, const std::vector<ImuSample>& imu_after) {
+  NavState x = start;
+  x.T_imu_lidar = options_.T_imu_lidar;
+  estimator_->Initialize(x, options_.initial_uncertainty.SlamCovariance());
+  for (const ImuSample& s : imu_after) estimator_->AddImu(s);
+  status_ = Status::kRunning;
+}
+
+void OdometryPipeline::AddStaticScan(const MeasurementGroup& group) {
+  LidarScan scan = group.scan;
+  preprocessor_.Clean(&scan);
+  PointCloud points_imu;
+  points_imu.reserve(scan.points.size());
+  for (const ScanPoint& p : scan.points) {
+    points_imu.push_back((options_.T_imu_lidar * p.position_lidar.cast<double>()).cast<float>());
+  }
+  supervisor_->AddStaticScan(points_imu, group.imu.empty() ? 0 : group.imu.back().t_ns);
+}
+
+void OdometryPipeline::StartLocalization(const MeasurementGroup& group) {
+  NavState x;
+  if (options_.imu.enabled) {
+    x = imu_initializer_.state();
+  } else {
+    x.t_ns = group.scan.t_ns;
+    x.gravity_map = Eigen::Vector3d(0.0, 0.0, -options_.imu.gravity_mps2);
+  }
+  x.T_imu_lidar = options_.T_imu_lidar;
+  std::string why;
+  if (supervisor_->Start(x, options_.imu.enabled, map_, estimator_.get(), &why)) {
+    status_ = Status::kRunning;
+  } else {
+    Fail(why);
+  }
+}
+
+}  // namespace hylo::estimation

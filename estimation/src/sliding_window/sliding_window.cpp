@@ -1,0 +1,224 @@
+// Sliding window: construction, IMU buffering, prediction and the per-scan update flow (the
+// factor graph and the solver are in sliding_window_solve.cpp).
+#include "hylo/estimation/sliding_window/sliding_window.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hylo/common/check.h"
+#include "hylo/estimation/imu_propagation.h"
+#include "hylo/estimation/lidar_update.h"
+#include "sliding_window_state.h"
+
+namespace hylo::estimation {
+
+using namespace state_index;  // NOLINT: index names only
+
+SlidingWindow::SlidingWindow(const EstimatorOptions& options, const ImuOptions& imu)
+    : BackendBase(options, imu) {}
+
+SlidingWindow::~SlidingWindow() = default;
+
+void SlidingWindow::Initialize(const NavState& state, const StateCovariance& covariance) {
+  FinalizeWindow();  // a restart (relocalization) ends what the window knew
+  Restart(state);
+  initial_covariance_ = 0.5 * (covariance + covariance.transpose());
+  covariance_ = initial_covariance_;
+  window_.clear();
+  auto first = std::make_unique<WindowState>();
+  first->t_ns = state.t_ns;
+  first->blocks.FromNavState(state);
+  window_.push_back(std::move(first));
+  Eigen::Map<Eigen::Vector3d>{gravity_map_} = state.gravity_map;
+  // The initial covariance becomes the first prior, on [θ, p, v, b_g, b_a, g] (or [θ, p]):
+  // the blocks' order is the error-state order of nav_state.h.
+  std::vector<BlockRef> blocks = StateBlockRefs(window_.front().get(), imu_options_.enabled);
+  for (double* g : GlobalBlocks()) blocks.push_back({g, 3, false});
+  const int dim = imu_options_.enabled ? kGravity + 3 : 6;
+  const Eigen::MatrixXd information =
+      initial_covariance_.topLeftCorner(dim, dim).ldlt().solve(Eigen::MatrixXd::Identity(dim, dim));
+  prior_ = std::make_unique<MarginalPrior>(
+      PriorFromInformation(blocks, information, Eigen::VectorXd::Zero(dim)));
+}
+
+void SlidingWindow::FinalizeWindow() {
+  for (std::size_t k = 0; k < window_.size(); ++k) {
+    if (!window_[k]->holds_scan) continue;
+    finalized_.push_back(StateAt(k));
+    window_[k]->holds_scan = false;  // final once
+  }
+}
+
+std::vector<NavState> SlidingWindow::WindowStates() const {
+  std::vector<NavState> states;
+  for (std::size_t k = 0; k < window_.size(); ++k) states.push_back(StateAt(k));
+  return states;
+}
+
+NavState SlidingWindow::StateAt(std::size_t index) const {
+  NavState x = window_[index]->blocks.ToNavState(state_);
+  x.t_ns = window_[index]->t_ns;
+  if (imu_options_.enabled) x.gravity_map = Eigen::Map<const Eigen::Vector3d>(gravity_map_);
+  return x;
+}
+
+std::vector<double*> SlidingWindow::GlobalBlocks() {
+  if (!imu_options_.enabled) return {};
+  return {gravity_map_};
+}
+
+void SlidingWindow::AppendState(const DeskewedScan& scan) {
+  const NavState last = StateAt(window_.size() - 1);
+  auto next = std::make_unique<WindowState>();
+  next->t_ns = scan.t_ns;
+  NavState predicted = PredictAt(scan.t_ns);
+  if (imu_options_.enabled && !imu_.empty()) {
+    next->imu =
+        std::make_unique<ImuPreintegration>(last.gyro_bias, last.accel_bias, imu_options_.noise);
+    for (const ImuInterval& in : MakeIntervals(imu_.samples(), last.t_ns, scan.t_ns)) {
+      next->imu->Integrate(in);
+    }
+    predicted = next->imu->Predict(last, last.gravity_map);
+  }
+  next->blocks.FromNavState(predicted);
+  window_.push_back(std::move(next));
+  SetNewestScan(scan);
+  imu_.DropBefore(scan.t_ns);
+  while (static_cast<int>(window_.size()) > options_.sliding_window.window_size) {
+    MarginalizeOldest();
+  }
+}
+
+void SlidingWindow::SetNewestScan(const DeskewedScan& scan) {
+  WindowState& newest = *window_.back();
+  newest.holds_scan = true;
+  newest.points_imu.clear();
+  newest.ranges_m.clear();
+  newest.matches.clear();
+  newest.points_imu.reserve(scan.points_lidar.size());
+  for (const Eigen::Vector3f& p : scan.points_lidar) {
+    const Eigen::Vector3d p_lidar = p.cast<double>();
+    newest.points_imu.push_back(state_.T_imu_lidar * p_lidar);
+    newest.ranges_m.push_back(p_lidar.norm());
+  }
+}
+
+std::size_t SlidingWindow::AssociateNewest(const registration::PlaneMatcher& planes) {
+  WindowState& newest = *window_.back();
+  const lie::SE3d T_map_imu = StateAt(window_.size() - 1).T_map_imu();
+  newest.matches.clear();
+  registration::Plane plane;
+  for (std::size_t i = 0; i < newest.points_imu.size(); ++i) {
+    const Eigen::Vector3d p_map = T_map_imu * newest.points_imu[i];
+    if (!planes.Match(p_map, &plane)) continue;
+    if (!planes.PassesGate(plane.Distance(p_map), newest.ranges_m[i])) continue;
+    newest.matches.push_back({newest.points_imu[i], plane, 1.0, static_cast<uint32_t>(i)});
+  }
+  return newest.matches.size();
+}
+
+void SlidingWindow::Reweight() {
+  // Iteratively reweighted least squares: the robust loss's weight ρ'(r²) at the current
+  // estimate, fixed during the next solver round (Zhang, "Parameter estimation techniques",
+  // IVC 1997, Sec. 5.1). Huber: 1 inside c, c/|r| outside; Cauchy: 1/(1 + r²/c²).
+  const SlidingWindowOptions& o = options_.sliding_window;
+  const double c = o.robust_loss_scale_m;
+  const bool huber = o.robust_loss == SlidingWindowOptions::RobustLoss::kHuber;
+  const bool cauchy = o.robust_loss == SlidingWindowOptions::RobustLoss::kCauchy;
+  const double lidar_noise_m = options_.lidar_update.lidar_noise_m;
+  for (std::size_t k = 0; k < window_.size(); ++k) {
+    const lie::SE3d T_map_imu = StateAt(k).T_map_imu();
+    const Eigen::Matrix3d R = T_map_imu.so3().Matrix();
+    const Eigen::Vector3d p = T_map_imu.translation();
+    for (PlaneMatch& m : window_[k]->matches) {
+      const double r = std::abs(m.plane.Distance(R * m.point_imu + p));
+      double w = 1.0;
+      if (huber) {
+        w = r <= c ? 1.0 : c / r;
+      } else if (cauchy) {
+        w = 1.0 / (1.0 + (r * r) / (c * c));
+      }
+      m.sqrt_weight = std::sqrt(w) / lidar_noise_m;
+    }
+  }
+}
+
+UpdateSummary SlidingWindow::Update(const DeskewedScan& scan,
+                                    const registration::PlaneMatcher& planes) {
+  UpdateSummary summary;
+  summary.num_points = scan.points_lidar.size();
+  if (!initialized_) {
+    summary.message = "estimator not initialised";
+    return summary;
+  }
+  if (scan.t_ns < state_.t_ns) {
+    summary.message = "scan time is before the last state: ignored";
+    return summary;
+  }
+  const NavState before = state_;
+  if (scan.t_ns == state_.t_ns) {
+    SetNewestScan(scan);  // e.g. the first scan without IMU, registered at the initial time
+  } else {
+    AppendState(scan);
+  }
+  WindowState& newest = *window_.back();
+  if (planes.map().Size() == 0) {
+    summary.message = "map is empty: prediction only";
+  } else {
+    Correct(planes, &summary);
+  }
+  state_ = StateAt(window_.size() - 1);
+  if (summary.applied) FinishUpdate(&summary);
+  if (!imu_options_.enabled && state_.t_ns > before.t_ns) {
+    constant_velocity_.Learn(before, &state_);
+    newest.blocks.FromNavState(state_);
+  }
+  ComputeCovariance();
+  return summary;
+}
+
+void SlidingWindow::Correct(const registration::PlaneMatcher& planes, UpdateSummary* summary) {
+  WindowState& newest = *window_.back();
+  const StateBlocks predicted = newest.blocks;
+  if (!imu_options_.enabled && options_.no_imu.yaw_search_deg > 0.0) {
+    const NavState best =
+        SearchYaw(StateAt(window_.size() - 1), options_.no_imu, [&](const NavState& candidate) {
+          newest.blocks.FromNavState(candidate);
+          return AssociateNewest(planes);
+        });
+    newest.blocks.FromNavState(best);
+  }
+  const SlidingWindowOptions& o = options_.sliding_window;
+  const int min_matches = options_.lidar_update.min_matches;
+  for (int round = 0; round < o.association_rounds; ++round) {
+    summary->num_matches = AssociateNewest(planes);
+    if (static_cast<int>(summary->num_matches) < min_matches) {
+      summary->message = TooFewMatchesMessage(summary->num_matches, min_matches);
+      newest.matches.clear();
+      newest.blocks = predicted;
+      summary->applied = false;
+      return;
+    }
+    Reweight();
+    SolveReport report;
+    Solve(&report, o.max_solver_time_s / o.association_rounds);
+    summary->iterations += report.iterations;
+    summary->converged = report.converged;
+    summary->applied = true;
+  }
+}
+
+void SlidingWindow::FinishUpdate(UpdateSummary* summary) {
+  // Residuals, fit and degeneracy from the newest scan's matches at the final estimate.
+  const WindowState& newest = *window_.back();
+  LidarFit fit(newest.points_imu.size());
+  const lie::SE3d T_map_imu = state_.T_map_imu();
+  const lie::SO3d R_imu_map = state_.R_map_imu.Inverse();
+  for (const PlaneMatch& m : newest.matches) {
+    fit.Add(m.point_index, m.point_imu, R_imu_map * m.plane.normal,
+            m.plane.Distance(T_map_imu * m.point_imu), true);
+  }
+  fit.Report(options_.lidar_update, summary);
+}
+
+}  // namespace hylo::estimation

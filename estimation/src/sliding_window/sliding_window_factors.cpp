@@ -1,0 +1,136 @@
+#include "sliding_window_factors.h"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+
+#include "hylo/estimation/sliding_window/so3_manifold.h"
+
+namespace hylo::estimation {
+namespace {
+
+using RowMajor15x3 = Eigen::Matrix<double, 15, 3, Eigen::RowMajor>;
+using RowMajor15x9 = Eigen::Matrix<double, 15, 9, Eigen::RowMajor>;
+
+NavState StateFromBlocks(const double* rotation, const double* position, const double* speed_bias) {
+  NavState x;
+  x.R_map_imu = lie::SO3d(Eigen::Quaterniond(rotation));
+  x.p_map_imu = Eigen::Map<const Eigen::Vector3d>(position);
+  x.v_map_imu = Eigen::Map<const Eigen::Vector3d>(speed_bias);
+  x.gyro_bias = Eigen::Map<const Eigen::Vector3d>(speed_bias + 3);
+  x.accel_bias = Eigen::Map<const Eigen::Vector3d>(speed_bias + 6);
+  return x;
+}
+
+// Writes the whitened tangent Jacobian of one state into its three ambient blocks.
+void ScatterImuJacobian(const ImuJacobian& J, const double* rotation, double* jac_rotation,
+                        double* jac_position, double* jac_speed_bias) {
+  if (jac_rotation != nullptr) {
+    LiftRotationJacobian<15>(rotation, Eigen::Matrix<double, 15, 3>(J.leftCols<3>()), jac_rotation);
+  }
+  if (jac_position != nullptr) Eigen::Map<RowMajor15x3>{jac_position} = J.middleCols<3>(3);
+  if (jac_speed_bias != nullptr) Eigen::Map<RowMajor15x9>{jac_speed_bias} = J.rightCols<9>();
+}
+
+struct ConstantVelocityResidual {
+  double dt_ab, dt_bc, inv_sigma_t, inv_sigma_r;
+
+  template <typename T>
+  bool operator()(const T* q_a, const T* p_a, const T* q_b, const T* p_b, const T* q_c,
+                  const T* p_c, T* residual) const {
+    using Vec3 = Eigen::Matrix<T, 3, 1>;
+    using Quat = Eigen::Quaternion<T>;
+    const Eigen::Map<const Vec3> pa(p_a), pb(p_b), pc(p_c);
+    const lie::SO3<T> Ra{Quat(q_a)}, Rb{Quat(q_b)}, Rc{Quat(q_c)};
+    const Vec3 v_ab = (pb - pa) / T(dt_ab), v_bc = (pc - pb) / T(dt_bc);
+    const Vec3 w_ab = lie::Minus(Rb, Ra) / T(dt_ab), w_bc = lie::Minus(Rc, Rb) / T(dt_bc);
+    Eigen::Map<Vec3>{residual} = (v_bc - v_ab) * T(inv_sigma_t);
+    Eigen::Map<Vec3>(residual + 3) = (w_bc - w_ab) * T(inv_sigma_r);
+    return true;
+  }
+};
+
+}  // namespace
+
+NavState StateBlocks::ToNavState(const NavState& x) const {
+  NavState y = StateFromBlocks(rotation, position, speed_bias);
+  y.t_ns = x.t_ns;
+  y.gravity_map = x.gravity_map;
+  y.T_imu_lidar = x.T_imu_lidar;
+  return y;
+}
+
+void StateBlocks::FromNavState(const NavState& x) {
+  Eigen::Map<Eigen::Vector4d>{rotation} = x.R_map_imu.unit_quaternion().coeffs();
+  Eigen::Map<Eigen::Vector3d>{position} = x.p_map_imu;
+  Eigen::Map<Eigen::Vector3d>{speed_bias} = x.v_map_imu;
+  Eigen::Map<Eigen::Vector3d>(speed_bias + 3) = x.gyro_bias;
+  Eigen::Map<Eigen::Vector3d>(speed_bias + 6) = x.accel_bias;
+}
+
+ImuFactor::ImuFactor(const ImuPreintegration& preintegration) : preintegration_(preintegration) {
+  const ImuCovariance information = preintegration.ResidualCovariance().inverse();
+  sqrt_information_ = information.llt().matrixL().transpose();
+}
+
+bool ImuFactor::Evaluate(double const* const* parameters, double* residuals,
+                         double** jacobians) const {
+  const NavState x_i = StateFromBlocks(parameters[0], parameters[1], parameters[2]);
+  const NavState x_j = StateFromBlocks(parameters[3], parameters[4], parameters[5]);
+  const Eigen::Map<const Eigen::Vector3d> gravity_map(parameters[6]);
+  ImuJacobian J_i, J_j;
+  Eigen::Matrix<double, 15, 3> J_g;
+  const bool want = jacobians != nullptr;
+  const ImuResidual r = preintegration_.Evaluate(x_i, x_j, gravity_map, want ? &J_i : nullptr,
+                                                 want ? &J_j : nullptr, want ? &J_g : nullptr);
+  Eigen::Map<ImuResidual>{residuals} = sqrt_information_ * r;
+  if (!want) return true;
+  ScatterImuJacobian(sqrt_information_ * J_i, parameters[0], jacobians[0], jacobians[1],
+                     jacobians[2]);
+  ScatterImuJacobian(sqrt_information_ * J_j, parameters[3], jacobians[3], jacobians[4],
+                     jacobians[5]);
+  if (jacobians[6] != nullptr) Eigen::Map<RowMajor15x3>{jacobians[6]} = sqrt_information_ * J_g;
+  return true;
+}
+
+ScanPlaneFactor::ScanPlaneFactor(const std::vector<PlaneMatch>& matches) : matches_(matches) {
+  set_num_residuals(static_cast<int>(matches.size()));
+  mutable_parameter_block_sizes()->assign({4, 3});
+}
+
+bool ScanPlaneFactor::Evaluate(double const* const* parameters, double* residuals,
+                               double** jacobians) const {
+  const Eigen::Quaterniond q(parameters[0]);
+  const Eigen::Matrix3d R = q.normalized().toRotationMatrix();
+  const Eigen::Map<const Eigen::Vector3d> p(parameters[1]);
+  const bool want_rotation = jacobians != nullptr && jacobians[0] != nullptr;
+  const bool want_position = jacobians != nullptr && jacobians[1] != nullptr;
+  // P⁺ = 4 Pᵀ of the rotation's PlusJacobian, so ambient row = tangent row · P⁺.
+  const Eigen::Matrix<double, 3, 4> lift = 4.0 * RotationPlusJacobian(parameters[0]).transpose();
+  for (std::size_t k = 0; k < matches_.size(); ++k) {
+    const PlaneMatch& m = matches_[k];
+    residuals[k] = m.sqrt_weight * m.plane.Distance(R * m.point_imu + p);
+    if (want_rotation) {
+      // R·Exp(δ)·q ≈ R q − R [q]^ δ, so ∂r/∂δ = −nᵀ R [q]^ = (q × Rᵀn)ᵀ (as the IESKF).
+      const Eigen::RowVector3d d_theta =
+          m.sqrt_weight * m.point_imu.cross(R.transpose() * m.plane.normal).transpose();
+      Eigen::Map<Eigen::RowVector4d>(jacobians[0] + 4 * k) = d_theta * lift;
+    }
+    if (want_position) {
+      Eigen::Map<Eigen::RowVector3d>(jacobians[1] + 3 * k) =
+          m.sqrt_weight * m.plane.normal.transpose();
+    }
+  }
+  return true;
+}
+
+ceres::CostFunction* MakeConstantVelocityFactor(double dt_ab_s, double dt_bc_s,
+                                                double translation_noise, double rotation_noise) {
+  const double dt_mid = 0.5 * (dt_ab_s + dt_bc_s);
+  const ConstantVelocityResidual functor{dt_ab_s, dt_bc_s,
+                                         1.0 / (translation_noise * std::sqrt(dt_mid)),
+                                         1.0 / (rotation_noise * std::sqrt(dt_mid))};
+  return new ceres::AutoDiffCostFunction<ConstantVelocityResidual, 6, 4, 3, 4, 3, 4, 3>(
+      new ConstantVelocityResidual(functor));
+}
+
+}  // namespace hylo::estimation

@@ -1,0 +1,42 @@
+#include "hylo/estimation/sliding_window/sliding_window_options.h"
+
+#include <utility>
+
+#include "hylo/common/enum_names.h"
+#include "hylo/common/option_checks.h"
+
+namespace hylo::estimation {
+namespace {
+
+using LinearSolver = SlidingWindowOptions::LinearSolver;
+using RobustLoss = SlidingWindowOptions::RobustLoss;
+
+const std::pair<LinearSolver, const char*> kSolverNames[] = {
+    {LinearSolver::kSparseNormalCholesky, "sparse_normal_cholesky"},
+    {LinearSolver::kDenseNormalCholesky, "dense_normal_cholesky"},
+    {LinearSolver::kDenseSchur, "dense_schur"},
+    {LinearSolver::kSparseSchur, "sparse_schur"},
+    {LinearSolver::kDenseQr, "dense_qr"}};
+const std::pair<RobustLoss, const char*> kLossNames[] = {
+    {RobustLoss::kNone, "none"}, {RobustLoss::kHuber, "huber"}, {RobustLoss::kCauchy, "cauchy"}};
+
+}  // namespace
+
+std::string ToString(LinearSolver solver) { return NameOf(kSolverNames, solver); }
+bool ParseLinearSolver(const std::string& name, LinearSolver* solver) {
+  return ValueOf(kSolverNames, name, solver);
+}
+std::string ToString(RobustLoss loss) { return NameOf(kLossNames, loss); }
+bool ParseRobustLoss(const std::string& name, RobustLoss* loss) {
+  return ValueOf(kLossNames, name, loss);
+}
+
+bool SlidingWindowOptions::IsValid(std::string* why) const {
+  return CheckAtLeast("window_size", window_size, 2, "", why) &&
+         CheckAtLeast("max_iterations", max_iterations, 1, "", why) &&
+         CheckAtLeast("association_rounds", association_rounds, 1, "", why) &&
+         CheckPositive("max_solver_time_s", max_solver_time_s, why) &&
+         CheckPositive("robust_loss_scale_m", robust_loss_scale_m, why);
+}
+
+}  // namespace hylo::estimation

@@ -1,0 +1,49 @@
+#pragma once
+// The sliding window's per-scan state and the factor graph built over it (private).
+
+#include <deque>
+#include <memory>
+#include <vector>
+
+#include "hylo/estimation/estimator_options.h"
+#include "hylo/estimation/imu_preintegration.h"
+#include "marginalization.h"
+#include "sliding_window_factors.h"
+
+namespace hylo::estimation {
+
+struct WindowState {
+  int64_t t_ns = 0;
+  /// A scan was registered at this state and it was not finalized yet (a start state holds
+  /// none: it is not a scan's pose).
+  bool holds_scan = false;
+  StateBlocks blocks;
+  /// Preintegrated IMU from the previous window state to this one (null for the first state
+  /// of a window, and without IMU data).
+  std::unique_ptr<ImuPreintegration> imu;
+  std::vector<Eigen::Vector3d> points_imu;  ///< the scan, IMU frame at t_ns, m
+  std::vector<double> ranges_m;             ///< each point's range from the lidar, m
+  std::vector<PlaneMatch> matches;          ///< current plane matches (empty: no lidar factor)
+};
+
+using Window = std::deque<std::unique_ptr<WindowState>>;
+
+/// Cost functions (owned) and their blocks for every factor of the window.
+struct FactorSet {
+  std::vector<std::unique_ptr<ceres::CostFunction>> owned;
+  std::vector<FactorRef> refs;
+};
+
+/// The window's blocks as BlockRefs: rotation, position (and speed_bias with an IMU).
+std::vector<BlockRef> StateBlockRefs(WindowState* state, bool use_imu);
+
+/// Every factor of the window: the prior (if any), IMU factors (using the shared gravity block
+/// `gravity_map`) or constant-velocity factors, and the
+/// point-to-plane factors of scans with matches.
+FactorSet BuildFactors(const Window& window, const MarginalPrior* prior, double* gravity_map,
+                       const EstimatorOptions& options, bool use_imu);
+
+/// True when `factor` uses any of `blocks`' values.
+bool Touches(const FactorRef& factor, const std::vector<BlockRef>& blocks);
+
+}  // namespace hylo::estimation
