@@ -7,6 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libceres-dev libsuitesparse-dev libpcl-dev
   libyaml-cpp-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libnanoflann-dev
+  nlohmann-json3-dev libpng-dev liblzf-dev
   librosbag-storage-dev libroscpp-dev libroscpp-core-dev
   libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libstd-msgs-dev
   # ROS1 node (apps/ros) and its integration test: tf2_ros, std_srvs; roscore + rosbag play

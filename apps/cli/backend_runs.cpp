@@ -15,8 +15,8 @@
 
 #include "hylo/config/run_config.h"
 #include "hylo/estimation/estimator.h"
+#include "hylo/io/json.h"
 #include "hylo/registration/pose_guess.h"
-#include "hylo/report/json_reader.h"
 #include "hylo/run/run_log.h"
 
 extern char** environ;
@@ -96,16 +96,15 @@ std::vector<evaluation::TimedPose> ToTimed(const std::vector<io::StampedPose>& p
 
 // The figures of a finished child run, from its files.
 void ReadChildOutputs(const BackendRunsRequest& request, BackendRun* run) {
-  const io::Json summary = report::ReadJsonFile(run->dir + "/summary.json");
+  const io::Json summary = io::ReadJsonFile(run->dir + "/summary.json");
   report::BackendRow& row = run->row;
-  row.c2c_mean_m = report::NumberAt(summary, "c2c.mean_m");
-  row.c2c_std_m = report::NumberAt(summary, "c2c.std_m");
-  row.ms_per_scan_median = report::NumberAt(summary, "ms_per_scan_median");
-  row.ms_per_scan_p99 = report::NumberAt(summary, "ms_per_scan_p99");
-  row.cpu_ms_per_scan_median = report::NumberAt(summary, "cpu_ms_per_scan_median");
-  row.scans = report::NumberAt(summary, "scans_processed");
-  row.peak_memory_mb =
-      report::NumberAt(report::ReadJsonFile(run->dir + "/process.json"), "peak_memory_mb");
+  row.c2c_mean_m = io::NumberAt(summary, "c2c.mean_m");
+  row.c2c_std_m = io::NumberAt(summary, "c2c.std_m");
+  row.ms_per_scan_median = io::NumberAt(summary, "ms_per_scan_median");
+  row.ms_per_scan_p99 = io::NumberAt(summary, "ms_per_scan_p99");
+  row.cpu_ms_per_scan_median = io::NumberAt(summary, "cpu_ms_per_scan_median");
+  row.scans = io::NumberAt(summary, "scans_processed");
+  row.peak_memory_mb = io::NumberAt(io::ReadJsonFile(run->dir + "/process.json"), "peak_memory_mb");
   run->trajectory = io::ReadTum(run->dir + "/trajectory.tum");
   if (!request.ground_truth.empty()) {
     run->ate = EvaluateTrajectory(run->trajectory, request.ground_truth, request.rpe_delta_m, &row);
@@ -187,7 +186,7 @@ void RunBackendHere(const BackendRunsRequest& request, const std::string& backen
     run.out_dir = dir;
     run.label = backend;
     run::RunLog(run);
-    io::Json process = io::Json::MakeObject();
+    io::Json process = io::Json::object();
     process["peak_memory_mb"] = OwnPeakMemoryMb();
     process["source"] = "VmHWM of this back-end's own process (/proc/self/status)";
     io::WriteJsonFile(dir + "/process.json", process);

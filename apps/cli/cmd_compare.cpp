@@ -76,7 +76,7 @@ void RunCompare(const CompareArgs& args) {
   const auto plots = DrawRunFigures(runs, args.request.ground_truth,
                                     BackgroundMap(args.request, runs), out + "/plots");
   report::WriteReport(out + "/comparison.md", Content(args, runs, plots));
-  io::Json json = io::Json::MakeObject();
+  io::Json json = io::Json::object();
   json["log"] = args.request.log;
   json["prior_map"] = args.request.prior_map;
   json["ground_truth"] = args.request.ground_truth;

@@ -18,7 +18,7 @@ struct CraftArgs {
 };
 
 io::Json SummaryJson(const CraftArgs& args, const terrain::CraftResult& r) {
-  io::Json j = io::Json::MakeObject();
+  io::Json j = io::Json::object();
   j["in"] = args.in_path;
   j["out"] = args.out_path;
   io::Json& o = j["options"];
@@ -40,8 +40,7 @@ io::Json SummaryJson(const CraftArgs& args, const terrain::CraftResult& r) {
   p["output"] = r.points_world.size();
   j["seconds"]["sampling"] = r.sampling_seconds;
   j["seconds"]["mls"] = r.mls_seconds;
-  j["origin_world"] =
-      io::Json::FromNumbers({r.origin_world.x(), r.origin_world.y(), r.origin_world.z()});
+  j["origin_world"] = io::Json::array({r.origin_world.x(), r.origin_world.y(), r.origin_world.z()});
   return j;
 }
 

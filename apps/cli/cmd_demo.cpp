@@ -19,7 +19,7 @@
 #include "demo_report.h"
 #include "demo_setup.h"
 #include "hylo/evaluation/trajectory_metrics.h"
-#include "hylo/report/json_reader.h"
+#include "hylo/io/json.h"
 #include "hylo/report/report.h"
 #include "hylo/run/run_log.h"
 #include "hylo/sim_io/session_writer.h"
@@ -84,18 +84,18 @@ sim::SimulationOptions SimulationFor(const DemoArgs& args) {
 
 io::Json Simulate(const sim::SimulationOptions& options, const std::string& dir) {
   const sim::Site site = sim::BuildSite(options.seed, options.terrain);
-  io::Json sessions = io::Json::MakeArray();
+  io::Json sessions = io::Json::array();
   for (const sim::SessionId id : {sim::SessionId::kA, sim::SessionId::kB}) {
     const sim::SessionSummary s = sim::WriteSession(options, site, id, dir);
     std::printf("  session %s: %.0f s, %zu scans, %.1f m driven (%.1f s wall)\n",
                 sim::ToString(id).c_str(), s.duration_s, s.scans, s.path_length_m, s.elapsed_s);
-    io::Json j = io::Json::MakeObject();
+    io::Json j = io::Json::object();
     j["session"] = sim::ToString(id);
     j["duration_s"] = s.duration_s;
     j["scans"] = s.scans;
     j["path_length_m"] = s.path_length_m;
     j["wall_s"] = s.elapsed_s;
-    sessions.PushBack(j);
+    sessions.push_back(j);
   }
   sim::WriteSiteOutputs(options, site, sim::SiteOutputOptions(), dir);
   return sessions;
@@ -115,10 +115,9 @@ evaluation::AteResult SlamSessionA(const DemoPaths& p, const config::RunConfig& 
   *summary = result.summary;
   (*summary)["ate_rmse_m"] = row.ate_rmse_m;
   (*summary)["rpe_rmse_m"] = row.rpe_rmse_m;
-  std::printf(
-      "  %zu scans, ATE RMSE %s m against the truth, %s ms/scan median\n", result.trajectory.size(),
-      report::FormatFigure(row.ate_rmse_m, 4).c_str(),
-      report::FormatFigure(report::NumberAt(result.summary, "ms_per_scan_median"), 2).c_str());
+  std::printf("  %zu scans, ATE RMSE %s m against the truth, %s ms/scan median\n",
+              result.trajectory.size(), report::FormatFigure(row.ate_rmse_m, 4).c_str(),
+              report::FormatFigure(io::NumberAt(result.summary, "ms_per_scan_median"), 2).c_str());
   return ate;
 }
 

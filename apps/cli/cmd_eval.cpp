@@ -177,7 +177,7 @@ void RunAte(const AteArgs& args) {
   json["end_drift_m"] = ate.end_drift_m;
   // Row-major, as a 4×4 is read and typed (Eigen stores column-major).
   const Eigen::Matrix<double, 4, 4, Eigen::RowMajor> T = ate.T_reference_estimate.matrix();
-  json["T_reference_estimate"] = io::Json::FromNumbers(std::vector<double>(T.data(), T.data() + 16));
+  json["T_reference_estimate"] = io::Json(std::vector<double>(T.data(), T.data() + 16));
   MaybeWriteJson(args.json, json);
 }
 

@@ -34,7 +34,7 @@ const std::map<std::string, terrain::ClothHoleFill>& HoleFillByName() {
 
 io::Json SummaryJson(const GroundArgs& args, const terrain::ClothFilterResult& r, double seconds) {
   const terrain::ClothFilterOptions& o = args.options;
-  io::Json j = io::Json::MakeObject();
+  io::Json j = io::Json::object();
   j["in"] = args.in_path;
   j["out_ground"] = args.ground_path;
   j["out_objects"] = args.objects_path;
@@ -69,8 +69,7 @@ io::Json SummaryJson(const GroundArgs& args, const terrain::ClothFilterResult& r
   c["last_max_displacement_m"] = r.last_max_displacement_m;
   c["hole_particles"] = r.num_hole_particles;
   c["pinned_by_slope"] = r.num_pinned_by_slope;
-  j["origin_world"] =
-      io::Json::FromNumbers({r.origin_world.x(), r.origin_world.y(), r.origin_world.z()});
+  j["origin_world"] = io::Json::array({r.origin_world.x(), r.origin_world.y(), r.origin_world.z()});
   j["seconds"] = seconds;
   return j;
 }

@@ -33,7 +33,7 @@ io::Json DescribeBagToTerminal(const std::string& path) {
   json["path"] = path;
   json["message_count"] = bag.message_count;
   json["duration_s"] = bag.duration_s;
-  io::Json topics = io::Json::MakeArray();
+  io::Json topics = io::Json::array();
   for (const auto& t : bag.topics) {
     std::printf("  %-28s %-26s %7zu msgs  %8.2f Hz  %.3f .. %.3f s\n", t.name.c_str(),
                 t.type.c_str(), t.message_count, t.mean_rate_hz, NanosToSeconds(t.first_stamp_ns),
@@ -52,7 +52,7 @@ io::Json DescribeBagToTerminal(const std::string& path) {
       topic["point_fields"] = fields;
       topic["time_convention"] = io::ToString(t.detected_convention);
     }
-    topics.PushBack(std::move(topic));
+    topics.push_back(std::move(topic));
   }
   json["topics"] = std::move(topics);
   return json;

@@ -48,13 +48,13 @@ void RunLocalize(const LocalizeArgs& args) {
   const run::RunResult result = run::RunLog(request);
   MaybeWriteJson(args.json, result.summary);
   const io::Json& s = result.summary;
-  const io::Json* c2c = s.Find("c2c");
-  std::printf("%s: %zu scans, path %.1f m, %zu events, c2c mean %.3f m std %.3f m, "
-              "%.2f ms/scan median, %.2f p99\n",
-              s.Find("mode")->AsString()->c_str(), result.trajectory.size(),
-              s.Find("path_length_m")->AsNumber(), s.Find("events")->AsArray()->size(),
-              c2c->Find("mean_m")->AsNumber(), c2c->Find("std_m")->AsNumber(),
-              s.Find("ms_per_scan_median")->AsNumber(), s.Find("ms_per_scan_p99")->AsNumber());
+  std::printf(
+      "%s: %zu scans, path %.1f m, %zu events, c2c mean %.3f m std %.3f m, "
+      "%.2f ms/scan median, %.2f p99\n",
+      s.at("mode").get_ref<const std::string&>().c_str(), result.trajectory.size(),
+      io::NumberAt(s, "path_length_m"), s.at("events").size(), io::NumberAt(s, "c2c.mean_m"),
+      io::NumberAt(s, "c2c.std_m"), io::NumberAt(s, "ms_per_scan_median"),
+      io::NumberAt(s, "ms_per_scan_p99"));
 }
 
 }  // namespace

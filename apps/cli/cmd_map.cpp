@@ -26,10 +26,10 @@ void RunMap(const MapArgs& args) {
   const run::RunResult result = run::RunLog(request);
   MaybeWriteJson(args.json, result.summary);
   std::printf("%zu scans, path %.1f m, map %zu points, %.2f ms/scan median, %.2f p99\n",
-              result.trajectory.size(), result.summary.Find("path_length_m")->AsNumber(),
-              static_cast<std::size_t>(result.summary.Find("map_points")->AsNumber()),
-              result.summary.Find("ms_per_scan_median")->AsNumber(),
-              result.summary.Find("ms_per_scan_p99")->AsNumber());
+              result.trajectory.size(), io::NumberAt(result.summary, "path_length_m"),
+              result.summary.at("map_points").get<std::size_t>(),
+              io::NumberAt(result.summary, "ms_per_scan_median"),
+              io::NumberAt(result.summary, "ms_per_scan_p99"));
 }
 
 }  // namespace

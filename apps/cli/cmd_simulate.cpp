@@ -24,7 +24,7 @@ struct SimulateArgs {
 };
 
 io::Json SessionJson(const sim::SessionSummary& s) {
-  io::Json j = io::Json::MakeObject();
+  io::Json j = io::Json::object();
   j["session"] = sim::ToString(s.session);
   j["duration_s"] = s.duration_s;
   j["imu_samples"] = s.imu_samples;
@@ -48,10 +48,10 @@ void Run(const SimulateArgs& args) {
   std::string why;
   if (!options.IsValid(&why)) throw std::runtime_error(why);
   const sim::Site site = sim::BuildSite(options.seed, options.terrain);
-  io::Json summary = io::Json::MakeObject();
+  io::Json summary = io::Json::object();
   summary["out"] = args.out_dir;
   summary["options"] = sim::OptionsToJson(options);
-  io::Json sessions = io::Json::MakeArray();
+  io::Json sessions = io::Json::array();
   for (const sim::SessionId id : {sim::SessionId::kA, sim::SessionId::kB}) {
     if (args.session != "both" && args.session != sim::ToString(id)) continue;
     std::unique_ptr<io::Progress> progress;
@@ -73,7 +73,7 @@ void Run(const SimulateArgs& args) {
         "(%.2f x real time on CPU time)\n",
         sim::ToString(id).c_str(), s.elapsed_s, s.cpu_s, s.duration_s,
         s.duration_s / std::max(s.cpu_s, 1e-9));
-    sessions.PushBack(SessionJson(s));
+    sessions.push_back(SessionJson(s));
   }
   summary["sessions"] = sessions;
   if (!args.skip_site) {

@@ -22,7 +22,7 @@ struct TraversabilityArgs {
 };
 
 io::Json OptionsJson(const terrain::TraversabilityOptions& o) {
-  io::Json j = io::Json::MakeObject();
+  io::Json j = io::Json::object();
   j["resolution_m"] = o.resolution_m;
   j["max_hole_size_m"] = o.elevation.max_hole_size_m;
   j["normal_radius_m"] = o.surface.normal_radius_m;
@@ -43,13 +43,12 @@ io::Json OptionsJson(const terrain::TraversabilityOptions& o) {
 io::Json SummaryJson(const TraversabilityArgs& args, const terrain::TraversabilityMap& map) {
   const terrain::GridGeometry& g = map.grid.geometry();
   const terrain::TraversabilitySummary& s = map.summary;
-  io::Json j = io::Json::MakeObject();
+  io::Json j = io::Json::object();
   j["ground"] = args.ground_path;
   j["objects"] = args.objects_path;
   j["options"] = OptionsJson(args.options);
-  j["origin_world"] =
-      io::Json::FromNumbers({g.origin_world.x(), g.origin_world.y(), g.origin_world.z()});
-  j["corner_world"] = io::Json::FromNumbers({g.CornerWorld().x(), g.CornerWorld().y()});
+  j["origin_world"] = io::Json::array({g.origin_world.x(), g.origin_world.y(), g.origin_world.z()});
+  j["corner_world"] = io::Json::array({g.CornerWorld().x(), g.CornerWorld().y()});
   j["resolution_m"] = g.resolution_m;
   j["width"] = g.width;
   j["height"] = g.height;
@@ -107,7 +106,7 @@ void Run(const TraversabilityArgs& args) {
   progress.Finish();
   const std::vector<std::string> files = io::WriteTraversabilityFiles(args.out_dir, map);
   io::Json summary = SummaryJson(args, map);
-  for (const std::string& f : files) summary["outputs"].PushBack(f);
+  for (const std::string& f : files) summary["outputs"].push_back(f);
   const auto& n = map.summary.cells_per_class;
   std::printf("grid %d x %d at %.3f m, corner (%.3f, %.3f)\n", map.grid.geometry().width,
               map.grid.geometry().height, map.grid.geometry().resolution_m,

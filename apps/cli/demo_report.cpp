@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "hylo/report/json_reader.h"
+#include "hylo/io/json.h"
 #include "hylo/report/report.h"
 #include "hylo/sim_io/session_writer.h"
 
@@ -12,21 +12,21 @@ namespace {
 std::string Fixed(double value, int decimals) { return report::FormatFigure(value, decimals); }
 
 io::Json PlotsJson(const std::vector<report::PlotFile>& plots) {
-  io::Json array = io::Json::MakeArray();
+  io::Json array = io::Json::array();
   for (const report::PlotFile& p : plots) {
-    io::Json j = io::Json::MakeObject();
+    io::Json j = io::Json::object();
     j["title"] = p.title;
     j["path"] = p.path;
     j["ok"] = p.ok;
     if (!p.ok) j["message"] = p.message;
-    array.PushBack(j);
+    array.push_back(j);
   }
   return array;
 }
 
 io::Json SummaryJson(const DemoPaths& p, const DemoSummary& s, const std::vector<BackendRun>& runs,
                      const std::vector<report::PlotFile>& plots) {
-  io::Json j = io::Json::MakeObject();
+  io::Json j = io::Json::object();
   j["dir"] = p.dir;
   j["quick"] = s.quick;
   j["elapsed_s"] = s.elapsed_s;
@@ -43,8 +43,7 @@ io::Json SummaryJson(const DemoPaths& p, const DemoSummary& s, const std::vector
   // Row-major: the transpose is evaluated into a matrix (an expression's data() would be the
   // column-major original).
   const Eigen::Matrix4d T_rows = s.guess_world_imu.matrix().transpose();
-  loc["guess_T_map_imu"] =
-      io::Json::FromNumbers(std::vector<double>(T_rows.data(), T_rows.data() + 16));
+  loc["guess_T_map_imu"] = io::Json(std::vector<double>(T_rows.data(), T_rows.data() + 16));
   std::vector<report::BackendRow> rows;
   for (const BackendRun& run : runs) rows.push_back(run.row);
   loc["backends"] = report::TableToJson(rows);
@@ -84,8 +83,8 @@ std::string Intro(const DemoSummary& s) {
          Fixed(s.hybrid_after_s, 0) +
          " s), with each estimator back-end. "
          "SLAM on session A: ATE RMSE " +
-         Fixed(report::NumberAt(s.slam, "ate_rmse_m"), 4) +
-         " m. Whole run: " + Fixed(s.elapsed_s, 0) + " s.";
+         Fixed(io::NumberAt(s.slam, "ate_rmse_m"), 4) + " m. Whole run: " + Fixed(s.elapsed_s, 0) +
+         " s.";
 }
 
 std::vector<std::pair<std::string, std::string>> Parameters(const DemoSummary& s) {

@@ -30,7 +30,7 @@ io::CloudFile Select(const io::CloudFile& cloud, const std::vector<terrain::Grou
 }  // namespace
 
 io::Json CraftStep::ToJson() const {
-  io::Json j = io::Json::MakeObject();
+  io::Json j = io::Json::object();
   j["input_points"] = input_points;
   j["output_points"] = output_points;
   j["seconds"] = seconds;
@@ -54,7 +54,7 @@ CraftStep CraftFile(const std::string& in_path, const std::string& out_path,
 }
 
 io::Json GroundStep::ToJson() const {
-  io::Json j = io::Json::MakeObject();
+  io::Json j = io::Json::object();
   j["ground_points"] = ground_points;
   j["object_points"] = object_points;
   j["iterations"] = iterations;
@@ -81,7 +81,7 @@ GroundStep GroundFile(const std::string& in_path, const std::string& ground_path
 }
 
 io::Json TraversabilityStep::ToJson() const {
-  io::Json j = io::Json::MakeObject();
+  io::Json j = io::Json::object();
   j["resolution_m"] = resolution_m;
   j["width"] = width;
   j["height"] = height;

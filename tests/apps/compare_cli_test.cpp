@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "apps/cli_test_util.h"
-#include "hylo/report/json_reader.h"
+#include "hylo/io/json.h"
 #include "test_data.h"
 
 namespace hylo {
@@ -37,22 +37,22 @@ TEST(CompareCliTest, EveryBackendOnOneSessionInOneTable) {
   ASSERT_EQ(status, 0) << out;
   EXPECT_NE(out.find("ATE RMSE [m]"), std::string::npos) << out;
   EXPECT_NE(ReadText(dir + "/cmp/comparison.md").find("| ieskf |"), std::string::npos);
-  const io::Json json = report::ReadJsonFile(dir + "/cmp/comparison.json");
-  const io::Json::Array& rows = *json.Find("backends")->AsArray();
+  const io::Json json = io::ReadJsonFile(dir + "/cmp/comparison.json");
+  const io::Json& rows = json.at("backends");
   ASSERT_EQ(rows.size(), 2u);
   for (const io::Json& row : rows) {
-    const std::string backend = *row.Find("backend")->AsString();
-    const std::string row_status = *row.Find("status")->AsString();
+    const std::string backend = row.at("backend").get<std::string>();
+    const std::string row_status = row.at("status").get<std::string>();
     if (row_status == "not available") continue;
-    ASSERT_EQ(row_status, "ok") << backend << ": " << *row.Find("note")->AsString();
+    ASSERT_EQ(row_status, "ok") << backend << ": " << row.at("note").get<std::string>();
     EXPECT_TRUE(fs::exists(dir + "/cmp/" + backend + "/trajectory.tum")) << backend;
     // SLAM over ~10 m: a working back-end stays within decimetres (loose: a sanity bound).
-    EXPECT_LT(report::NumberAt(row, "ate_rmse_m"), 0.2) << backend;
-    EXPECT_GT(report::NumberAt(row, "rpe_rmse_m"), 0.0) << backend;
-    EXPECT_TRUE(std::isnan(report::NumberAt(row, "c2c_mean_m"))) << "no prior map: no c2c";
+    EXPECT_LT(io::NumberAt(row, "ate_rmse_m"), 0.2) << backend;
+    EXPECT_GT(io::NumberAt(row, "rpe_rmse_m"), 0.0) << backend;
+    EXPECT_TRUE(std::isnan(io::NumberAt(row, "c2c_mean_m"))) << "no prior map: no c2c";
     // Own process: more than an empty process, far less than the whole machine.
-    EXPECT_GT(report::NumberAt(row, "peak_memory_mb"), 5.0) << backend;
-    EXPECT_LT(report::NumberAt(row, "peak_memory_mb"), 4000.0) << backend;
+    EXPECT_GT(io::NumberAt(row, "peak_memory_mb"), 5.0) << backend;
+    EXPECT_LT(io::NumberAt(row, "peak_memory_mb"), 4000.0) << backend;
   }
 }
 
@@ -64,12 +64,12 @@ TEST(CompareCliTest, UnreadableLogGivesFailedRowsAndNonZeroExit) {
   const std::string out = ReadText(dir + "/cmp.txt");
   EXPECT_NE(status, 0) << out;
   EXPECT_NE(out.find("missing.bag"), std::string::npos) << out;
-  const io::Json json = report::ReadJsonFile(dir + "/cmp/comparison.json");
-  for (const io::Json& row : *json.Find("backends")->AsArray()) {
-    const std::string row_status = *row.Find("status")->AsString();
+  const io::Json json = io::ReadJsonFile(dir + "/cmp/comparison.json");
+  for (const io::Json& row : json.at("backends")) {
+    const std::string row_status = row.at("status").get<std::string>();
     EXPECT_TRUE(row_status == "failed" || row_status == "not available") << row_status;
     if (row_status == "failed") {
-      EXPECT_NE(row.Find("note")->AsString()->find("missing.bag"), std::string::npos);
+      EXPECT_NE(row.at("note").get<std::string>().find("missing.bag"), std::string::npos);
     }
   }
 }

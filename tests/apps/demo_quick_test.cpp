@@ -9,8 +9,8 @@
 #include <filesystem>
 
 #include "apps/cli_test_util.h"
+#include "hylo/io/json.h"
 #include "hylo/report/gnuplot.h"
-#include "hylo/report/json_reader.h"
 #include "test_data.h"
 
 namespace hylo {
@@ -21,16 +21,15 @@ namespace fs = std::filesystem;
 using testing::ReadText;
 
 const io::Json* BackendRow(const io::Json& summary, const std::string& backend) {
-  const io::Json* rows = summary.Find("localization_b")->Find("backends");
-  for (const io::Json& row : *rows->AsArray()) {
-    if (*row.Find("backend")->AsString() == backend) return &row;
+  for (const io::Json& row : summary.at("localization_b").at("backends")) {
+    if (row.at("backend") == backend) return &row;
   }
   return nullptr;
 }
 
 std::string Text(const io::Json& row, const char* key) {
-  const io::Json* value = row.Find(key);
-  return value != nullptr && value->AsString() != nullptr ? *value->AsString() : "";
+  const auto value = row.find(key);
+  return value != row.end() && value->is_string() ? value->get<std::string>() : "";
 }
 
 // The IESKF must reach the bounds; every other back-end has a row, and when it is built it
@@ -42,14 +41,13 @@ void CheckLocalization(const io::Json& summary) {
     ASSERT_NE(row, nullptr);
     if (backend != "ieskf" && Text(*row, "status") == "not available") continue;
     ASSERT_EQ(Text(*row, "status"), "ok") << Text(*row, "note");
-    EXPECT_LE(report::NumberAt(*row, "ate_rmse_m"), 0.05);
-    EXPECT_LE(report::NumberAt(*row, "c2c_mean_m"), 0.10);
-    EXPECT_GT(report::NumberAt(*row, "c2c_mean_m"), 0.0);
-    EXPECT_GT(report::NumberAt(*row, "ms_per_scan_median"), 0.0);
-    EXPECT_GE(report::NumberAt(*row, "ms_per_scan_p99"),
-              report::NumberAt(*row, "ms_per_scan_median"));
-    EXPECT_GT(report::NumberAt(*row, "peak_memory_mb"), 1.0);
-    EXPECT_GT(report::NumberAt(*row, "scans"), 200.0);  // B: 30 s at 10 Hz, less the start
+    EXPECT_LE(io::NumberAt(*row, "ate_rmse_m"), 0.05);
+    EXPECT_LE(io::NumberAt(*row, "c2c_mean_m"), 0.10);
+    EXPECT_GT(io::NumberAt(*row, "c2c_mean_m"), 0.0);
+    EXPECT_GT(io::NumberAt(*row, "ms_per_scan_median"), 0.0);
+    EXPECT_GE(io::NumberAt(*row, "ms_per_scan_p99"), io::NumberAt(*row, "ms_per_scan_median"));
+    EXPECT_GT(io::NumberAt(*row, "peak_memory_mb"), 1.0);
+    EXPECT_GT(io::NumberAt(*row, "scans"), 200.0);  // B: 30 s at 10 Hz, less the start
   }
 }
 
@@ -81,10 +79,10 @@ TEST(DemoQuickTest, FiguresWithinBoundsReportAndImagesWritten) {
   EXPECT_NE(log.find("report:  " + out), std::string::npos) << log;
   const std::string run = out + "/latest";
   ASSERT_TRUE(fs::is_symlink(run));
-  const io::Json summary = report::ReadJsonFile(run + "/summary.json");
-  EXPECT_LE(report::NumberAt(summary, "slam_a.ate_rmse_m"), 0.05);
-  EXPECT_GT(report::NumberAt(summary, "traversability.cells.free"), 100.0);
-  EXPECT_GT(report::NumberAt(summary, "traversability.cells.lethal"), 100.0);
+  const io::Json summary = io::ReadJsonFile(run + "/summary.json");
+  EXPECT_LE(io::NumberAt(summary, "slam_a.ate_rmse_m"), 0.05);
+  EXPECT_GT(io::NumberAt(summary, "traversability.cells.free"), 100.0);
+  EXPECT_GT(io::NumberAt(summary, "traversability.cells.lethal"), 100.0);
   CheckLocalization(summary);
   CheckReportAndImages(run);
 }

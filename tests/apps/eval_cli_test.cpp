@@ -4,11 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <regex>
-#include <sstream>
 
 #include "apps/cli_test_util.h"
 #include "hylo/io/cloud_io.h"
+#include "hylo/io/json.h"
 #include "hylo/io/trajectory_io.h"
 #include "test_data.h"
 
@@ -20,13 +19,6 @@ using testing::ReadText;
 // stdout is not looked at; stderr goes to `stderr_path`.
 int RunHylo(const std::string& args, const std::string& stderr_path) {
   return testing::RunHylo(args, "/dev/null", stderr_path);
-}
-
-// A number member of a flat JSON summary (NaN when absent).
-double JsonNumber(const std::string& json, const std::string& key) {
-  std::smatch m;
-  const std::regex re("\"" + key + "\": *([-+0-9.eE]+)");
-  return std::regex_search(json, m, re) ? std::stod(m[1]) : std::nan("");
 }
 
 // A helix at 10 Hz, orientation following the heading; `transform` edits each position.
@@ -65,12 +57,12 @@ TEST_F(EvalCliTest, C2cMatchesTheHandComputedCase) {
                     Path("err.txt")),
             0)
       << ReadText(Path("err.txt"));
-  const std::string json = ReadText(Path("c2c.json"));
-  EXPECT_NEAR(JsonNumber(json, "mean_m"), 0.25, 1e-6);
-  EXPECT_NEAR(JsonNumber(json, "std_m"), std::sqrt(0.0125), 1e-6);
-  EXPECT_NEAR(JsonNumber(json, "median_m"), 0.25, 1e-6);
-  EXPECT_NEAR(JsonNumber(json, "rejected_fraction"), 0.2, 1e-12);
-  EXPECT_EQ(JsonNumber(json, "count"), 4);
+  const io::Json json = io::ReadJsonFile(Path("c2c.json"));
+  EXPECT_NEAR(io::NumberAt(json, "mean_m"), 0.25, 1e-6);
+  EXPECT_NEAR(io::NumberAt(json, "std_m"), std::sqrt(0.0125), 1e-6);
+  EXPECT_NEAR(io::NumberAt(json, "median_m"), 0.25, 1e-6);
+  EXPECT_NEAR(io::NumberAt(json, "rejected_fraction"), 0.2, 1e-12);
+  EXPECT_EQ(io::NumberAt(json, "count"), 4);
 }
 
 TEST_F(EvalCliTest, AteWithAndWithoutAlignment) {
@@ -83,20 +75,16 @@ TEST_F(EvalCliTest, AteWithAndWithoutAlignment) {
   const std::string base = "eval ate --gt " + Path("gt.txt") + " --json " + Path("ate.json");
   ASSERT_EQ(RunHylo(base + " --est " + Path("shifted.txt") + " --align none", Path("err.txt")), 0)
       << ReadText(Path("err.txt"));
-  std::string json = ReadText(Path("ate.json"));
-  EXPECT_NEAR(JsonNumber(json, "rmse_m"), 0.1, 1e-6);
-  EXPECT_NEAR(JsonNumber(json, "max_m"), 0.1, 1e-6);
-  EXPECT_EQ(JsonNumber(json, "num_poses"), 100);
+  io::Json json = io::ReadJsonFile(Path("ate.json"));
+  EXPECT_NEAR(io::NumberAt(json, "rmse_m"), 0.1, 1e-6);
+  EXPECT_NEAR(io::NumberAt(json, "max_m"), 0.1, 1e-6);
+  EXPECT_EQ(io::NumberAt(json, "num_poses"), 100);
   ASSERT_EQ(RunHylo(base + " --est " + Path("shifted.txt"), Path("err.txt")), 0);
-  json = ReadText(Path("ate.json"));
-  EXPECT_LT(JsonNumber(json, "rmse_m"), 1e-6);
+  json = io::ReadJsonFile(Path("ate.json"));
+  EXPECT_LT(io::NumberAt(json, "rmse_m"), 1e-6);
   // The alignment moves the estimate back by 0.1 m in y: row-major, the translation is the
   // last column (elements 3, 7, 11), the last row 0 0 0 1.
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(json, m, std::regex("\"T_reference_estimate\": *\\[([^\\]]*)\\]")));
-  std::vector<double> T;
-  std::stringstream values(std::regex_replace(m[1].str(), std::regex(","), " "));
-  for (double v; values >> v;) T.push_back(v);
+  const std::vector<double> T = json.at("T_reference_estimate").get<std::vector<double>>();
   ASSERT_EQ(T.size(), 16u);
   EXPECT_NEAR(T[3], 0.0, 1e-6);
   EXPECT_NEAR(T[7], -0.1, 1e-6);
@@ -105,9 +93,9 @@ TEST_F(EvalCliTest, AteWithAndWithoutAlignment) {
   EXPECT_NEAR(T[12], 0.0, 1e-12);
   EXPECT_NEAR(T[13], 0.0, 1e-12);
   ASSERT_EQ(RunHylo(base + " --est " + Path("scaled.txt") + " --align sim3", Path("err.txt")), 0);
-  json = ReadText(Path("ate.json"));
-  EXPECT_NEAR(JsonNumber(json, "scale"), 2.0, 1e-6);
-  EXPECT_LT(JsonNumber(json, "rmse_m"), 1e-5);
+  json = io::ReadJsonFile(Path("ate.json"));
+  EXPECT_NEAR(io::NumberAt(json, "scale"), 2.0, 1e-6);
+  EXPECT_LT(io::NumberAt(json, "rmse_m"), 1e-5);
 }
 
 TEST_F(EvalCliTest, RpeOverFramesAndMetres) {
@@ -119,19 +107,19 @@ TEST_F(EvalCliTest, RpeOverFramesAndMetres) {
                     Path("err.txt")),
             0)
       << ReadText(Path("err.txt"));
-  std::string json = ReadText(Path("rpe.json"));
+  io::Json json = io::ReadJsonFile(Path("rpe.json"));
   const double step_m = std::hypot(2 * 10 * std::sin(0.025), 0.005);  // chord of the helix
-  EXPECT_NEAR(JsonNumber(json, "rmse_m"), 0.02 * step_m, 1e-6);
-  EXPECT_EQ(JsonNumber(json, "num_pairs"), 99);
+  EXPECT_NEAR(io::NumberAt(json, "rmse_m"), 0.02 * step_m, 1e-6);
+  EXPECT_EQ(io::NumberAt(json, "num_pairs"), 99);
   ASSERT_EQ(RunHylo("eval rpe --est " + Path("long.txt") + " --gt " + Path("gt.txt") +
                         " --delta 5 --delta-unit m --json " + Path("rpe.json"),
                     Path("err.txt")),
             0);
-  json = ReadText(Path("rpe.json"));
+  json = io::ReadJsonFile(Path("rpe.json"));
   // 10 chords make 4.9997 m < 5 m, so each pair spans 11 steps (0.55 rad, 5.5 cm up):
   // 2 % of that displacement, for i = 0..88.
-  EXPECT_EQ(JsonNumber(json, "num_pairs"), 89);
-  EXPECT_NEAR(JsonNumber(json, "mean_m"), 0.02 * std::hypot(20 * std::sin(0.275), 0.055), 1e-6);
+  EXPECT_EQ(io::NumberAt(json, "num_pairs"), 89);
+  EXPECT_NEAR(io::NumberAt(json, "mean_m"), 0.02 * std::hypot(20 * std::sin(0.275), 0.055), 1e-6);
 }
 
 TEST_F(EvalCliTest, BadInputEndsInOneLineAndAnError) {

@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <filesystem>
 #include <random>
-#include <regex>
 #include <string>
 
 #include "apps/cli_test_util.h"
 #include "hylo/io/cloud_io.h"
+#include "hylo/io/json.h"
 #include "test_data.h"
 
 namespace hylo {
@@ -20,13 +20,6 @@ using testing::ReadText;
 
 int RunHylo(const std::string& args, const std::string& log_path) {
   return testing::RunHylo(args, log_path, log_path);
-}
-
-// A number member of a JSON summary, first occurrence (NaN when absent).
-double JsonNumber(const std::string& json, const std::string& key) {
-  std::smatch m;
-  const std::regex re("\"" + key + "\": *([-+0-9.eE]+)");
-  return std::regex_search(json, m, re) ? std::stod(m[1]) : std::nan("");
 }
 
 // 40 x 40 m field rising 2 % along x, a point every 0.25 m with 1 cm noise, and a 6 x 6 m
@@ -76,9 +69,9 @@ class MappingCliTest : public ::testing::Test {
               0)
         << ReadText(Path(tag + ".log"));
     const io::CloudFile g = io::ReadCloud(ground), o = io::ReadCloud(objects);
-    const std::string json = ReadText(Path(tag + ".json"));
-    EXPECT_EQ(JsonNumber(json, "ground"), double(g.positions.size()));
-    EXPECT_EQ(JsonNumber(json, "objects"), double(o.positions.size()));
+    const io::Json json = io::ReadJsonFile(Path(tag + ".json"));
+    EXPECT_EQ(io::NumberAt(json, "points.ground"), double(g.positions.size()));
+    EXPECT_EQ(io::NumberAt(json, "points.objects"), double(o.positions.size()));
     // No ground point higher above the field than the class threshold (0.5 m): no roof, no
     // wall above its foot; and nearly every field point is ground.
     std::size_t high_in_ground = 0, field_in_ground = 0, field_points = 0;
@@ -102,8 +95,7 @@ std::string* MappingCliTest::dir_ = nullptr;
 TEST_F(MappingCliTest, GroundSplitsTheBuildingOffWithEitherHoleFill) {
   ExpectBuildingSplitOff("", "defaults");
   ExpectBuildingSplitOff("--resolution 0.5 --rigidness 6 --hole-fill nearest", "fine");
-  EXPECT_NE(ReadText(Path("fine.json")).find("\"hole_fill\": \"nearest\""), std::string::npos)
-      << ReadText(Path("fine.json"));
+  EXPECT_EQ(io::ReadJsonFile(Path("fine.json")).at("options").at("hole_fill"), "nearest");
 }
 
 TEST_F(MappingCliTest, CraftThenTraversabilityWriteTheirFiles) {
@@ -117,7 +109,8 @@ TEST_F(MappingCliTest, CraftThenTraversabilityWriteTheirFiles) {
   const io::CloudFile clean = io::ReadCloud(Path("chain_clean.ply"));
   EXPECT_GT(clean.positions.size(), 10000u);
   EXPECT_EQ(clean.normals.size(), clean.positions.size());
-  EXPECT_EQ(JsonNumber(ReadText(Path("craft.json")), "output"), double(clean.positions.size()));
+  EXPECT_EQ(io::NumberAt(io::ReadJsonFile(Path("craft.json")), "points.output"),
+            double(clean.positions.size()));
 
   const std::string out = Path("costmap");
   ASSERT_EQ(RunHylo("traversability --ground " + Path("chain_clean.ply") + " --objects " +
@@ -131,7 +124,8 @@ TEST_F(MappingCliTest, CraftThenTraversabilityWriteTheirFiles) {
   }
   const std::string yaml = ReadText(out + "/costmap.yaml");
   EXPECT_NE(yaml.find("resolution: 0.5"), std::string::npos) << yaml;
-  EXPECT_NE(ReadText(Path("trav.json")).find("lethal"), std::string::npos);
+  // The building's cells are lethal.
+  EXPECT_GT(io::NumberAt(io::ReadJsonFile(Path("trav.json")), "cells.lethal"), 0.0);
 }
 
 TEST_F(MappingCliTest, BadInputIsRefusedWithTheReason) {

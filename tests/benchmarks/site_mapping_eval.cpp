@@ -30,7 +30,7 @@ using hylo::site_eval::SlopeFigures;
 using hylo::site_eval::Thickness;
 
 Json ThicknessJson(const Thickness& t) {
-  Json j = Json::MakeObject();
+  Json j = Json::object();
   j["points_measured"] = t.points;
   j["rms_m"] = t.rms_m;
   j["rms_ground_m"] = t.rms_ground_m;
@@ -46,7 +46,7 @@ Json ThicknessJson(const Thickness& t) {
 }
 
 Json SlopeJson(const SlopeFigures& s) {
-  Json j = Json::MakeObject();
+  Json j = Json::object();
   j["measured_cells"] = s.measured_cells;
   j["cells_compared"] = s.slope.cells;
   j["coverage"] = s.Coverage();
@@ -66,7 +66,7 @@ Json SlopeJson(const SlopeFigures& s) {
 }
 
 Json FiguresJson(const SiteEvalOptions& o, const SiteFigures& f) {
-  Json j = Json::MakeObject();
+  Json j = Json::object();
   j["simulation"] = hylo::sim::OptionsToJson(o.sim);
   Json& m = j["map"];
   m["scan_stride"] = o.scan_stride;
@@ -241,7 +241,7 @@ int main(int argc, char** argv) {
   }
   std::printf("simulation options (seed %llu):\n%s\n",
               static_cast<unsigned long long>(options.sim.seed),
-              hylo::sim::OptionsToJson(options.sim).Dump(-1).c_str());
+              hylo::sim::OptionsToJson(options.sim).dump().c_str());
   try {
     const SiteFigures figures = hylo::site_eval::EvaluateSite(options);
     PrintFigures(options, figures);

@@ -12,5 +12,5 @@ int main() {
   const bool config = !hylo::config::ParseRunConfig("imu: none\n", "consumer").pipeline.imu.enabled;
   hylo::io::Json json;
   json["ok"] = sampled && origin && config;
-  return json.Dump(-1) == "{\"ok\":true}" ? 0 : 1;
+  return json.dump() == "{\"ok\":true}" ? 0 : 1;
 }

@@ -13,6 +13,7 @@ namespace hylo::io {
 namespace {
 
 using testing::Append;
+using testing::ExpectReadError;
 using testing::RandomCloud;
 using testing::WriteRaw;
 
@@ -140,17 +141,6 @@ TEST(Pcd, AsciiReadsNanAndUnsignedLabels) {
   EXPECT_EQ(cloud.labels, (std::vector<int32_t>{7, -1}));  // 0xFFFFFFFF wraps to -1
 }
 
-void ExpectError(const std::string& path, const std::string& fragment) {
-  try {
-    ReadCloud(path);
-    ADD_FAILURE() << "no error for " << path;
-  } catch (const std::runtime_error& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(path), std::string::npos) << what;
-    EXPECT_NE(what.find(fragment), std::string::npos) << what;
-  }
-}
-
 TEST(Pcd, TruncatedFilesAreErrorsInEveryEncoding) {
   const std::string dir = hylo::testing::ScratchDir("pcd_truncated");
   const CloudFile cloud = RandomCloud(300, Eigen::Vector3d::Zero(), 3);
@@ -162,39 +152,39 @@ TEST(Pcd, TruncatedFilesAreErrorsInEveryEncoding) {
     const std::string cut = dir + "/" + name + "_cut.pcd";
     WriteCloud(full, cloud, encoding);
     testing::Truncate(full, cut, testing::FileSize(full) - 40);
-    ExpectError(cut, "truncated");
+    ExpectReadError(cut, "truncated");
   }
 }
 
 TEST(Pcd, MalformedHeadersAreErrors) {
   const std::string dir = hylo::testing::ScratchDir("pcd_malformed");
   WriteRaw(dir + "/nodata.pcd", "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 1\n");
-  ExpectError(dir + "/nodata.pcd", "no DATA");
+  ExpectReadError(dir + "/nodata.pcd", "no DATA");
   WriteRaw(dir + "/sizes.pcd", PcdHeader("x y z", "4 4", "F F F", "1 1 1", 1, 1, "ascii"));
-  ExpectError(dir + "/sizes.pcd", "disagree");
+  ExpectReadError(dir + "/sizes.pcd", "disagree");
   WriteRaw(dir + "/type.pcd", PcdHeader("x y z", "4 4 2", "F F F", "1 1 1", 1, 1, "ascii"));
-  ExpectError(dir + "/type.pcd", "unsupported TYPE");
+  ExpectReadError(dir + "/type.pcd", "unsupported TYPE");
   WriteRaw(dir + "/points.pcd", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 2\nHEIGHT 1\n"
                                 "POINTS 3\nDATA ascii\n");
-  ExpectError(dir + "/points.pcd", "POINTS");
+  ExpectReadError(dir + "/points.pcd", "POINTS");
   WriteRaw(dir + "/noxyz.pcd", PcdHeader("x y intensity", "4 4 4", "F F F", "1 1 1", 1, 1,
                                          "ascii") + "1 2 3\n");
-  ExpectError(dir + "/noxyz.pcd", "no x, y and z");
+  ExpectReadError(dir + "/noxyz.pcd", "no x, y and z");
   WriteRaw(dir + "/row.pcd", PcdHeader("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "ascii") +
                                  "1 2 3\n4 5\n");
-  ExpectError(dir + "/row.pcd", "line 2");
+  ExpectReadError(dir + "/row.pcd", "line 2");
   WriteRaw(dir + "/lzf.pcd", PcdHeader("x y z", "4 4 4", "F F F", "1 1 1", 1, 1,
                                        "binary_compressed"),
            {4, 0, 0, 0, 12, 0, 0, 0, 3, 'a', 'b', 'c'});  // expands to 4 bytes, not 12
-  ExpectError(dir + "/lzf.pcd", "corrupt");
+  ExpectReadError(dir + "/lzf.pcd", "corrupt");
 }
 
 TEST(CloudIo, MissingFileAndUnknownExtensionAreErrors) {
   const std::string dir = hylo::testing::ScratchDir("cloud_io_errors");
-  ExpectError(dir + "/absent.pcd", "cannot open");
-  ExpectError(dir + "/absent.ply", "cannot open");
+  ExpectReadError(dir + "/absent.pcd", "cannot open");
+  ExpectReadError(dir + "/absent.ply", "cannot open");
   WriteRaw(dir + "/cloud.xyz", "1 2 3\n");
-  ExpectError(dir + "/cloud.xyz", "unknown point cloud extension");
+  ExpectReadError(dir + "/cloud.xyz", "unknown point cloud extension");
   EXPECT_THROW(WriteCloud(dir + "/cloud.las", CloudFile{}), std::runtime_error);
   CloudFile bad;
   bad.positions = {{1, 2, 3}};
@@ -218,7 +208,7 @@ TEST(KittiBin, RoundTripsAndCountsNan) {
   cloud.dropped_non_finite = 1;
   ExpectSameCloud<float>(cloud, read);
   testing::Truncate(dir + "/000000.bin", dir + "/cut.bin", 100 * 16 - 3);
-  ExpectError(dir + "/cut.bin", "truncated");
+  ExpectReadError(dir + "/cut.bin", "truncated");
   EXPECT_THROW(WriteCloud(dir + "/a.bin", cloud, CloudEncoding::kAscii), std::runtime_error);
 }
 

@@ -1,6 +1,8 @@
 #pragma once
 // Helpers for the cloud file tests: random clouds and raw files written byte by byte.
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -58,6 +60,18 @@ void Append(std::vector<uint8_t>* out, T value, bool big_endian = false) {
   std::vector<uint8_t> b(p, p + sizeof(T));
   if (big_endian) std::reverse(b.begin(), b.end());
   out->insert(out->end(), b.begin(), b.end());
+}
+
+/// Expects ReadCloud(path) to throw an error that names the file and contains `fragment`.
+inline void ExpectReadError(const std::string& path, const std::string& fragment) {
+  try {
+    ReadCloud(path);
+    ADD_FAILURE() << "no error for " << path;
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_NE(what.find(fragment), std::string::npos) << what;
+  }
 }
 
 inline std::size_t FileSize(const std::string& path) {

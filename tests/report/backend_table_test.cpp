@@ -85,17 +85,17 @@ TEST(FormatTableTest, TerminalColumnsLineUp) {
 
 TEST(TableToJsonTest, FiguresUnderUnitKeysAndNullWhenMissing) {
   const io::Json json = TableToJson({Ieskf(), FailedRun()});
-  ASSERT_TRUE(json.IsArray());
-  ASSERT_EQ(json.AsArray()->size(), 2u);
-  const io::Json& ieskf = json.AsArray()->at(0);
-  EXPECT_EQ(*ieskf.Find("backend")->AsString(), "ieskf");
-  EXPECT_EQ(*ieskf.Find("status")->AsString(), "ok");
-  EXPECT_DOUBLE_EQ(ieskf.Find("ate_rmse_m")->AsNumber(), 0.0123456);
-  EXPECT_DOUBLE_EQ(ieskf.Find("peak_memory_mb")->AsNumber(), 151.26);
-  EXPECT_TRUE(ieskf.Find("rpe_rmse_m")->IsNull());
-  const io::Json& sw = json.AsArray()->at(1);
-  EXPECT_EQ(*sw.Find("status")->AsString(), "failed");
-  EXPECT_EQ(*sw.Find("note")->AsString(), "session_b.bag: ICP initializer rejected the start");
+  ASSERT_TRUE(json.is_array());
+  ASSERT_EQ(json.size(), 2u);
+  const io::Json& ieskf = json.at(0);
+  EXPECT_EQ(ieskf.at("backend"), "ieskf");
+  EXPECT_EQ(ieskf.at("status"), "ok");
+  EXPECT_DOUBLE_EQ(ieskf.at("ate_rmse_m").get<double>(), 0.0123456);
+  EXPECT_DOUBLE_EQ(ieskf.at("peak_memory_mb").get<double>(), 151.26);
+  EXPECT_TRUE(ieskf.at("rpe_rmse_m").is_null());
+  const io::Json& sw = json.at(1);
+  EXPECT_EQ(sw.at("status"), "failed");
+  EXPECT_EQ(sw.at("note"), "session_b.bag: ICP initializer rejected the start");
 }
 
 TEST(FormatTableTest, EmptyTableStillHasItsHeader) {

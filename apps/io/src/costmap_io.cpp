@@ -1,5 +1,7 @@
 #include "hylo/io/costmap_io.h"
 
+#include <png.h>
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -35,42 +37,6 @@ void CheckClasses(const GridMap& grid, const std::vector<CellClass>& classes) {
 /// Grid cell of image pixel (x, y): images run north to south, grid rows south to north.
 std::size_t CellOfPixel(const GridGeometry& g, int x, int y) {
   return g.Index(x, g.height - 1 - y);
-}
-
-void AppendBigEndian(std::string* out, uint32_t v) {
-  for (int shift = 24; shift >= 0; shift -= 8)
-    out->push_back(static_cast<char>((v >> shift) & 0xff));
-}
-
-void AppendChunk(std::string* png, const char type[4], const std::string& data) {
-  AppendBigEndian(png, static_cast<uint32_t>(data.size()));
-  std::string typed(type, 4);
-  typed += data;
-  png->append(typed);
-  // The chunk CRC covers the type and the data, not the length (PNG spec, 5.3).
-  AppendBigEndian(png, Crc32(reinterpret_cast<const uint8_t*>(typed.data()), typed.size()));
-}
-
-/// A zlib stream (RFC 1950) of stored deflate blocks (RFC 1951, BTYPE 00): no compression,
-/// so no dependency; every PNG decoder must accept it.
-std::string ZlibStored(const std::string& raw) {
-  std::string z = {0x78, 0x01};  // CMF: deflate, 32K window; FLG: check bits, no dictionary
-  constexpr std::size_t kMaxBlock = 65535;
-  std::size_t pos = 0;
-  do {
-    const std::size_t n = std::min(kMaxBlock, raw.size() - pos);
-    const bool last = pos + n == raw.size();
-    z.push_back(last ? 1 : 0);  // BFINAL, BTYPE = 00
-    const uint16_t len = static_cast<uint16_t>(n), nlen = static_cast<uint16_t>(~len);
-    z.push_back(static_cast<char>(len & 0xff));
-    z.push_back(static_cast<char>(len >> 8));
-    z.push_back(static_cast<char>(nlen & 0xff));
-    z.push_back(static_cast<char>(nlen >> 8));
-    z.append(raw, pos, n);
-    pos += n;
-  } while (pos < raw.size());
-  AppendBigEndian(&z, Adler32(reinterpret_cast<const uint8_t*>(raw.data()), raw.size()));
-  return z;
 }
 
 std::string FormatNumber(double v, const char* format) {
@@ -170,51 +136,25 @@ void WriteCostmapPng(const std::string& path, const GridMap& grid,
   WriteFile(path, EncodePngRgb(g.width, g.height, rgb));
 }
 
-uint32_t Crc32(const uint8_t* data, std::size_t size, uint32_t crc) {
-  static const std::array<uint32_t, 256> table = [] {
-    std::array<uint32_t, 256> t{};
-    for (uint32_t n = 0; n < 256; ++n) {
-      uint32_t c = n;
-      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xedb88320u ^ (c >> 1) : c >> 1;
-      t[n] = c;
-    }
-    return t;
-  }();
-  crc = ~crc;
-  for (std::size_t i = 0; i < size; ++i) crc = table[(crc ^ data[i]) & 0xff] ^ (crc >> 8);
-  return ~crc;
-}
-
-uint32_t Adler32(const uint8_t* data, std::size_t size) {
-  constexpr uint32_t kMod = 65521;
-  uint32_t a = 1, b = 0;
-  for (std::size_t i = 0; i < size; ++i) {
-    a = (a + data[i]) % kMod;
-    b = (b + a) % kMod;
-  }
-  return (b << 16) | a;
-}
-
 std::string EncodePngRgb(int width, int height, const std::vector<uint8_t>& rgb) {
   if (width <= 0 || height <= 0 ||
       rgb.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3) {
     throw std::invalid_argument("PNG: need width, height > 0 and width * height * 3 bytes");
   }
-  std::string png = "\x89PNG\r\n\x1a\n";
-  std::string header;
-  AppendBigEndian(&header, static_cast<uint32_t>(width));
-  AppendBigEndian(&header, static_cast<uint32_t>(height));
-  header += std::string{8, 2, 0, 0, 0};  // 8 bit, truecolour RGB, deflate, adaptive, no interlace
-  AppendChunk(&png, "IHDR", header);
-  std::string raw;
-  raw.reserve(rgb.size() + height);
-  for (int y = 0; y < height; ++y) {
-    raw.push_back(0);  // filter type None
-    raw.append(reinterpret_cast<const char*>(&rgb[static_cast<std::size_t>(y) * width * 3]),
-               static_cast<std::size_t>(width) * 3);
-  }
-  AppendChunk(&png, "IDAT", ZlibStored(raw));
-  AppendChunk(&png, "IEND", "");
+  // libpng's simplified API: no setjmp, failures come back as a return value and a message.
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = static_cast<png_uint_32>(width);
+  image.height = static_cast<png_uint_32>(height);
+  image.format = PNG_FORMAT_RGB;
+  std::string png(PNG_IMAGE_PNG_SIZE_MAX(image), '\0');
+  png_alloc_size_t size = png.size();
+  const bool ok = png_image_write_to_memory(&image, png.data(), &size, /*convert_to_8_bit=*/0,
+                                            rgb.data(), /*row_stride=*/0, /*colormap=*/nullptr);
+  const std::string message = image.message;
+  png_image_free(&image);
+  if (!ok) throw std::runtime_error("PNG encoding failed: " + message);
+  png.resize(size);
   return png;
 }
 

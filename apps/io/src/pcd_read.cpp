@@ -9,7 +9,7 @@
 
 #include "cloud_fields.h"
 #include "hylo/io/cloud_io.h"
-#include "hylo/io/lzf.h"
+#include "pcd_lzf.h"
 
 namespace hylo::io {
 namespace {
@@ -212,11 +212,8 @@ CloudFile ReadCompressedBody(const std::string& path, const PcdHeader& header,
                              std::to_string(uncompressed_size) + " bytes, header implies " +
                              std::to_string(expected));
   }
-  std::vector<uint8_t> raw;
-  std::string why;
-  if (!LzfDecompress(body.data() + 8, compressed_size, expected, &raw, &why)) {
-    ThrowFileError(path, "corrupt compressed data: " + why);
-  }
+  const std::vector<uint8_t> raw =
+      internal::LzfDecompress(path, body.data() + 8, compressed_size, expected);
   // Field-major: all values of field 0, then all of field 1, ...
   std::vector<std::size_t> start, stride;
   std::size_t offset = 0;

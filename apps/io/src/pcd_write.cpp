@@ -5,7 +5,7 @@
 
 #include "cloud_fields.h"
 #include "hylo/io/cloud_io.h"
-#include "hylo/io/lzf.h"
+#include "pcd_lzf.h"
 
 namespace hylo::io {
 namespace {
@@ -108,8 +108,7 @@ std::vector<uint8_t> CompressedBody(const std::string& path, const CloudFile& cl
                                     const std::vector<OutField>& fields) {
   const std::vector<uint8_t> raw = BinaryBody(cloud, fields, /*field_major=*/true);
   if (raw.size() > UINT32_MAX) internal::ThrowFileError(path, "too large for binary_compressed");
-  const std::vector<uint8_t> packed = LzfCompress(raw.data(), raw.size());
-  if (packed.size() > UINT32_MAX) internal::ThrowFileError(path, "too large for binary_compressed");
+  const std::vector<uint8_t> packed = internal::LzfCompress(path, raw);
   std::vector<uint8_t> out;
   internal::AppendBytes(&out, static_cast<uint32_t>(packed.size()));
   internal::AppendBytes(&out, static_cast<uint32_t>(raw.size()));

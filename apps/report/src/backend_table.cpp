@@ -120,9 +120,9 @@ std::string FormatTable(const std::vector<BackendRow>& rows, TableStyle style) {
 }
 
 io::Json TableToJson(const std::vector<BackendRow>& rows) {
-  io::Json table = io::Json::MakeArray();
+  io::Json table = io::Json::array();
   for (const BackendRow& row : rows) {
-    io::Json j = io::Json::MakeObject();
+    io::Json j = io::Json::object();
     j["backend"] = row.backend;
     j["status"] = ToString(row.status);
     j["note"] = row.note;
@@ -130,7 +130,7 @@ io::Json TableToJson(const std::vector<BackendRow>& rows) {
       const double value = row.*(c.figure);
       j[c.json_key] = std::isfinite(value) ? io::Json(value) : io::Json();
     }
-    table.PushBack(j);
+    table.push_back(j);
   }
   return table;
 }

@@ -63,7 +63,7 @@ std::string HealthJson(const HealthReport& report) {
   j["input"] = InputJson(report.input);
   j["last_event"] = report.last_event;
   j["message"] = report.message;
-  return j.Dump(-1);
+  return io::DumpJson(j, -1);
 }
 
 }  // namespace hylo::rosnode

@@ -27,19 +27,19 @@ using estimation::ScanResult;
 
 io::Json EventsJson(const std::vector<estimation::LocalizationEvent>& events,
                     const Eigen::Vector3d& origin_world) {
-  io::Json array = io::Json::MakeArray();
+  io::Json array = io::Json::array();
   for (const auto& e : events) {
     io::Json j;
     j["kind"] = estimation::ToString(e.kind);
     j["t_s"] = NanosToSeconds(e.t_ns);
     const Eigen::Vector3d p = e.T_map_imu.translation() + origin_world;
-    j["position_m"] = io::Json::FromNumbers({p.x(), p.y(), p.z()});
+    j["position_m"] = io::Json::array({p.x(), p.y(), p.z()});
     const Eigen::Matrix3d& R = e.T_map_imu.linear();
     j["yaw_deg"] = std::atan2(R(1, 0), R(0, 0)) * 180.0 / M_PI;
     if (std::isfinite(e.fitness_m2)) j["fitness_m2"] = e.fitness_m2;
     j["inlier_ratio"] = e.inlier_ratio;
     j["message"] = e.message;
-    array.PushBack(j);
+    array.push_back(j);
   }
   return array;
 }
@@ -189,7 +189,7 @@ RunResult RunLog(const RunRequest& request) {
   j["cpu_ms_per_scan_p99"] = Percentile(cpu_ms, 0.99);
   j["peak_memory_mb"] = usage.ru_maxrss / 1024.0;
   j["elapsed_s"] = progress.ElapsedSeconds();
-  j["origin_world"] = io::Json::FromNumbers({origin_world.x(), origin_world.y(), origin_world.z()});
+  j["origin_world"] = io::Json::array({origin_world.x(), origin_world.y(), origin_world.z()});
   j["events"] = EventsJson(pipeline.events(), origin_world);
   if (localizing) {
     j["prior_map"] = request.prior_map;

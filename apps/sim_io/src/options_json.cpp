@@ -3,11 +3,11 @@
 
 namespace hylo::sim {
 namespace {
-io::Json Vec2(const Eigen::Vector2d& v) { return io::Json::FromNumbers({v.x(), v.y()}); }
+io::Json Vec2(const Eigen::Vector2d& v) { return io::Json::array({v.x(), v.y()}); }
 }  // namespace
 
 io::Json OptionsToJson(const SimulationOptions& o) {
-  io::Json j = io::Json::MakeObject();
+  io::Json j = io::Json::object();
   j["seed"] = static_cast<unsigned long long>(o.seed);
   j["duration_a_s"] = o.duration_a_s;
   j["duration_b_s"] = o.duration_b_s;
@@ -36,8 +36,7 @@ io::Json OptionsToJson(const SimulationOptions& o) {
   io::Json& l = j["lidar"];
   l["model"] = ToString(o.lidar.model);
   const BeamTable beams = MakeBeamTable(o.lidar.model);
-  l["elevation_deg_by_slot"] =
-      io::Json::FromNumbers({beams.elevation_deg.begin(), beams.elevation_deg.end()});
+  l["elevation_deg_by_slot"] = io::Json(beams.elevation_deg);
   l["slot_ns"] = static_cast<long long>(beams.slot_ns);
   l["rate_hz"] = o.lidar.rate_hz;
   l["column_deg"] = o.lidar.column_deg;

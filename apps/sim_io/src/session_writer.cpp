@@ -17,18 +17,18 @@ std::string Join(const std::string& dir, const std::string& name) {
   return (std::filesystem::path(dir) / name).string();
 }
 
-io::Json Vec(const Eigen::Vector3d& v) { return io::Json::FromNumbers({v.x(), v.y(), v.z()}); }
+io::Json Vec(const Eigen::Vector3d& v) { return io::Json::array({v.x(), v.y(), v.z()}); }
 
 io::Json PoseJson(const Eigen::Isometry3d& T) {
-  io::Json j = io::Json::MakeObject();
+  io::Json j = io::Json::object();
   const Eigen::Quaterniond q(T.linear());
   j["translation_m"] = Vec(T.translation());
-  j["quaternion_xyzw"] = io::Json::FromNumbers({q.x(), q.y(), q.z(), q.w()});
+  j["quaternion_xyzw"] = io::Json::array({q.x(), q.y(), q.z(), q.w()});
   std::vector<double> m;
   for (int r = 0; r < 4; ++r) {
     for (int c = 0; c < 4; ++c) m.push_back(T.matrix()(r, c));
   }
-  j["matrix_row_major"] = io::Json::FromNumbers(m);
+  j["matrix_row_major"] = io::Json(m);
   return j;
 }
 
@@ -56,7 +56,7 @@ class FileSink : public SessionSink {
 
 io::Json ManifestJson(const SimulationOptions& options, const SessionSummary& s,
                       const std::string& dir) {
-  io::Json j = io::Json::MakeObject();
+  io::Json j = io::Json::object();
   j["generator"] = "hylo simulate";
   j["seed"] = static_cast<unsigned long long>(options.seed);
   j["session"] = ToString(s.session);
@@ -128,27 +128,27 @@ void WriteSiteOutputs(const SimulationOptions& options, const Site& site,
                  ReferenceCloud(site, world_a, output.reference_spacing_m, options.seed),
                  io::CloudEncoding::kBinary);
   WriteSlopeGrid(Join(dir, "site_slope.txt"), site, output.slope_resolution_m);
-  io::Json j = io::Json::MakeObject();
+  io::Json j = io::Json::object();
   j["seed"] = static_cast<unsigned long long>(options.seed);
-  j["site_min_m"] = io::Json::FromNumbers({site.site_min_m.x(), site.site_min_m.y()});
-  j["site_max_m"] = io::Json::FromNumbers({site.site_max_m.x(), site.site_max_m.y()});
-  j["annex_min_m"] = io::Json::FromNumbers({site.annex_min_m.x(), site.annex_min_m.y()});
-  j["annex_max_m"] = io::Json::FromNumbers({site.annex_max_m.x(), site.annex_max_m.y()});
+  j["site_min_m"] = io::Json::array({site.site_min_m.x(), site.site_min_m.y()});
+  j["site_max_m"] = io::Json::array({site.site_max_m.x(), site.site_max_m.y()});
+  j["annex_min_m"] = io::Json::array({site.annex_min_m.x(), site.annex_min_m.y()});
+  j["annex_max_m"] = io::Json::array({site.annex_max_m.x(), site.annex_max_m.y()});
   j["reference_cloud"] = "site_reference.pcd: session A's site, label 0 = ground, 1 = object";
   j["reference_spacing_m"] = output.reference_spacing_m;
   j["slope_grid"] = "site_slope.txt";
-  io::Json objects = io::Json::MakeArray();
+  io::Json objects = io::Json::array();
   for (const SiteObject& object : site.objects) {
     Aabb box;
     for (const Primitive& p : object.parts) box.Extend(BoundsOf(p));
-    io::Json o = io::Json::MakeObject();
+    io::Json o = io::Json::object();
     o["kind"] = object.kind;
     o["in_a"] = object.in_a;
     o["in_b"] = object.in_b;
     o["bounds_min_m"] = Vec(box.min);
     o["bounds_max_m"] = Vec(box.max);
     o["primitives"] = object.parts.size();
-    objects.PushBack(o);
+    objects.push_back(o);
   }
   j["objects"] = objects;
   io::WriteJsonFile(Join(dir, "site.json"), j);

@@ -8,7 +8,7 @@
 //    still read as free, graded by cost (traversable at a cost is still traversable; the grade
 //    stays visible and `mode: raw` recovers it).
 //  - A coloured PNG for people: unknown grey (128,128,128), lethal black, free/cost from green
-//    (cost 0) through yellow (0.5) to red (cost 1). RGB, 8 bit, stored (uncompressed) deflate.
+//    (cost 0) through yellow (0.5) to red (cost 1). RGB, 8 bit, encoded by libpng.
 //  - Each float layer as an ESRI ASCII grid (.asc, read by GDAL/QGIS): a six-line header
 //      ncols W / nrows H / xllcorner X / yllcorner Y / cellsize R / NODATA_value -9999
 //    (X, Y = world position of the grid's lower-left corner, m), then H lines of W values,
@@ -52,11 +52,8 @@ void WriteCostmapPng(const std::string& path, const terrain::GridMap& grid,
                      const std::vector<terrain::CellClass>& classes);
 
 /// PNG file bytes of an RGB8 image (`rgb` = height rows of width * 3 bytes, top row first).
+/// Throws std::invalid_argument for a size mismatch, std::runtime_error if libpng fails.
 std::string EncodePngRgb(int width, int height, const std::vector<uint8_t>& rgb);
-/// CRC-32 as used by PNG chunks (ISO 3309 / ITU-T V.42, reflected 0xEDB88320).
-uint32_t Crc32(const uint8_t* data, std::size_t size, uint32_t crc = 0);
-/// Adler-32 as used by zlib streams (RFC 1950).
-uint32_t Adler32(const uint8_t* data, std::size_t size);
 
 /// Writes one layer as an ESRI ASCII grid; `value_offset` is added to every value (the
 /// elevation layer is stored in the local frame: pass origin_world.z to write world heights).

@@ -1,69 +1,32 @@
 #pragma once
-// A small JSON value for the machine-readable summaries (`--json PATH`) and manifests.
-// Objects keep insertion order so summaries read top-down like the terminal output.
+// JSON for the machine-readable summaries (`--json PATH`), manifests, and the runs that
+// `hylo compare` and `hylo demo` start in their own processes and read back. The value type is
+// nlohmann's ordered_json: objects keep insertion order, so a summary reads top-down like the
+// terminal output, and non-finite doubles are written as null (JSON has no NaN), so a summary
+// with a failed figure stays parseable.
 
-#include <cstdint>
-#include <map>
-#include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
-#include <utility>
-#include <variant>
-#include <vector>
 
 namespace hylo::io {
 
-class Json {
- public:
-  using Array = std::vector<Json>;
-  using Object = std::vector<std::pair<std::string, Json>>;
+using Json = nlohmann::ordered_json;
 
-  Json() = default;  // null
-  Json(std::nullptr_t) {}
-  Json(bool b) : value_(b) {}
-  Json(int v) : value_(static_cast<int64_t>(v)) {}
-  Json(long v) : value_(static_cast<int64_t>(v)) {}
-  Json(long long v) : value_(static_cast<int64_t>(v)) {}
-  Json(unsigned v) : value_(static_cast<int64_t>(v)) {}
-  Json(unsigned long v) : value_(static_cast<int64_t>(v)) {}
-  Json(unsigned long long v) : value_(static_cast<int64_t>(v)) {}
-  Json(double v) : value_(v) {}
-  Json(float v) : value_(static_cast<double>(v)) {}
-  Json(const char* s) : value_(std::string(s)) {}
-  Json(std::string s) : value_(std::move(s)) {}
-  Json(Array a) : value_(std::move(a)) {}
-  Json(Object o) : value_(std::move(o)) {}
+/// The text of `json`; indent < 0 writes one line. Bytes that are not UTF-8 (a path from an
+/// odd file system, say) are written as U+FFFD instead of throwing, so a summary is never lost
+/// over one string.
+std::string DumpJson(const Json& json, int indent = 2);
 
-  static Json MakeObject() { return Json(Object{}); }
-  static Json MakeArray() { return Json(Array{}); }
-  /// An array of numbers, for vectors, matrices (row-major) and per-item series.
-  static Json FromNumbers(const std::vector<double>& values);
-
-  /// Object member access; a null value becomes an object, a missing key is appended.
-  Json& operator[](const std::string& key);
-  /// Appends to an array; a null value becomes an array.
-  void PushBack(Json value);
-
-  bool IsNull() const { return std::holds_alternative<std::monostate>(value_); }
-  bool IsObject() const { return std::holds_alternative<Object>(value_); }
-  bool IsArray() const { return std::holds_alternative<Array>(value_); }
-  const Object* AsObject() const { return std::get_if<Object>(&value_); }
-  const Array* AsArray() const { return std::get_if<Array>(&value_); }
-  const std::string* AsString() const { return std::get_if<std::string>(&value_); }
-  /// Number value (int or double), or `fallback` when this is not a number.
-  double AsNumber(double fallback = 0.0) const;
-  /// Member lookup without insertion; nullptr when absent or not an object.
-  const Json* Find(const std::string& key) const;
-
-  /// Serialises; indent < 0 writes one line. Non-finite doubles are written as null
-  /// (JSON has no NaN), so a summary stays parseable.
-  std::string Dump(int indent = 2) const;
-
- private:
-  void DumpTo(std::string* out, int indent, int depth) const;
-  std::variant<std::monostate, bool, int64_t, double, std::string, Array, Object> value_;
-};
-
-/// Writes `json` to `path` (throws std::runtime_error naming the file on failure).
+/// Writes `json` (indented) to `path`. Throws std::runtime_error naming the file when it cannot
+/// be written; a file that failed half-way is removed.
 void WriteJsonFile(const std::string& path, const Json& json);
+
+/// Reads and parses a JSON file. Throws std::runtime_error naming the file and the reason: it
+/// cannot be opened, or the byte offset, line and column where the text stops being JSON.
+Json ReadJsonFile(const std::string& path);
+
+/// The number at a dotted key path ("c2c.mean_m"), or NaN when a key is absent, null or not a
+/// number.
+double NumberAt(const Json& json, const std::string& dotted_path);
 
 }  // namespace hylo::io
