@@ -1,0 +1,142 @@
+#include "hylo/mapping/ground_filter.h"
+
+#include <stdexcept>
+#include <utility>
+
+namespace hylo::mapping {
+namespace {
+
+class ClothGroundFilter : public GroundFilter {
+ public:
+  explicit ClothGroundFilter(const ClothFilterOptions& options) : options_(options) {}
+  GroundMethod Method() const override { return GroundMethod::kCsf; }
+
+  GroundFilterResult Extract(const std::vector<Eigen::Vector3d>& points_world,
+                             const GroundProgress& progress) const override {
+    ClothFilterResult cloth = FilterGround(points_world, options_, progress);
+    GroundFilterResult result;
+    result.method = GroundMethod::kCsf;
+    result.ok = cloth.ok;
+    result.message = std::move(cloth.message);
+    result.labels = std::move(cloth.labels);
+    result.height_above_ground_m = std::move(cloth.height_above_cloth_m);
+    result.num_ground = cloth.num_ground;
+    result.num_objects = cloth.num_objects;
+    result.num_invalid = cloth.num_invalid;
+    result.origin_world = cloth.origin_world;
+    CsfStats& s = result.csf;
+    s.iterations = cloth.iterations;
+    s.converged = cloth.converged;
+    s.last_max_displacement_m = cloth.last_max_displacement_m;
+    s.cloth_cols = cloth.cloth_cols;
+    s.cloth_rows = cloth.cloth_rows;
+    s.num_hole_particles = cloth.num_hole_particles;
+    s.num_pinned_by_slope = cloth.num_pinned_by_slope;
+    s.num_low_outliers = cloth.num_low_outliers;
+    return result;
+  }
+
+ private:
+  ClothFilterOptions options_;
+};
+
+class SmrfGroundFilter : public GroundFilter {
+ public:
+  explicit SmrfGroundFilter(const SmrfOptions& options) : options_(options) {}
+  GroundMethod Method() const override { return GroundMethod::kSmrf; }
+
+  GroundFilterResult Extract(const std::vector<Eigen::Vector3d>& points_world,
+                             const GroundProgress& progress) const override {
+    SmrfResult smrf = FilterGroundSmrf(points_world, options_, progress);
+    GroundFilterResult result;
+    result.method = GroundMethod::kSmrf;
+    result.ok = smrf.ok;
+    result.message = std::move(smrf.message);
+    result.labels = std::move(smrf.labels);
+    result.height_above_ground_m = std::move(smrf.height_above_surface_m);
+    result.num_ground = smrf.num_ground;
+    result.num_objects = smrf.num_objects;
+    result.num_invalid = smrf.num_invalid;
+    result.origin_world = smrf.origin_world;
+    SmrfStats& s = result.smrf;
+    s.grid_cols = smrf.grid_cols;
+    s.grid_rows = smrf.grid_rows;
+    s.num_empty_cells = smrf.num_empty_cells;
+    s.num_low_outlier_cells = smrf.num_low_outlier_cells;
+    s.num_object_cells = smrf.num_object_cells;
+    return result;
+  }
+
+ private:
+  SmrfOptions options_;
+};
+
+}  // namespace
+
+const char* ToString(GroundMethod method) {
+  switch (method) {
+    case GroundMethod::kCsf:
+      return "csf";
+    case GroundMethod::kSmrf:
+      return "smrf";
+  }
+  return "unknown";
+}
+
+bool ParseGroundMethod(const std::string& name, GroundMethod* method) {
+  for (const GroundMethod m : {GroundMethod::kCsf, GroundMethod::kSmrf}) {
+    if (name != ToString(m)) continue;
+    *method = m;
+    return true;
+  }
+  return false;
+}
+
+const char* ToString(ClothHoleFill fill) {
+  switch (fill) {
+    case ClothHoleFill::kNeighbourMean:
+      return "mean";
+    case ClothHoleFill::kNearest:
+      return "nearest";
+    case ClothHoleFill::kReferenceScanline:
+      return "reference";
+  }
+  return "unknown";
+}
+
+bool ParseClothHoleFill(const std::string& name, ClothHoleFill* fill) {
+  for (const ClothHoleFill f : {ClothHoleFill::kNeighbourMean, ClothHoleFill::kNearest,
+                                ClothHoleFill::kReferenceScanline}) {
+    if (name != ToString(f)) continue;
+    *fill = f;
+    return true;
+  }
+  return false;
+}
+
+bool GroundFilterOptions::IsValid(std::string* why) const {
+  std::string inner;
+  const bool valid = method == GroundMethod::kCsf ? csf.IsValid(&inner) : smrf.IsValid(&inner);
+  if (!valid && why != nullptr) *why = inner;
+  return valid;
+}
+
+std::unique_ptr<GroundFilter> GroundFilter::Create(const GroundFilterOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(why);
+  switch (options.method) {
+    case GroundMethod::kCsf:
+      return std::make_unique<ClothGroundFilter>(options.csf);
+    case GroundMethod::kSmrf:
+      return std::make_unique<SmrfGroundFilter>(options.smrf);
+  }
+  throw std::invalid_argument("GroundFilterOptions.method: unknown back-end");
+}
+
+GroundFilterResult ExtractGround(const std::vector<Eigen::Vector3d>& points_world,
+                                 const GroundFilterOptions& options,
+                                 const GroundProgress& progress) {
+  return GroundFilter::Create(options)->Extract(points_world, progress);
+}
+
+}  // namespace hylo::mapping
