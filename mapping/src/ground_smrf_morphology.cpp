@@ -169,15 +169,32 @@ void Open(int cols, int rows, const Octagon& element, std::vector<float>* z) {
 
 std::vector<uint8_t> ProgressiveFilter(const Raster& surface, double slope, int max_radius_cells,
                                        const std::function<void(int, int)>& progress) {
+  // Beyond the border the surface continues flat at the border's height. Left out of the
+  // windows instead (a cliff to the opening), a slope rising to the border would be opened
+  // down by slope x radius there at every step and its upper edge flagged.
+  const int pad = max_radius_cells;
+  const int cols = surface.cols + 2 * pad, rows = surface.rows + 2 * pad;
+  std::vector<float> previous(static_cast<std::size_t>(cols) * rows);
+  for (int row = 0; row < rows; ++row) {
+    const int r = std::clamp(row - pad, 0, surface.rows - 1);
+    for (int col = 0; col < cols; ++col) {
+      const int c = std::clamp(col - pad, 0, surface.cols - 1);
+      previous[static_cast<std::size_t>(row) * cols + col] = surface.z[surface.Index(c, r)];
+    }
+  }
   std::vector<uint8_t> object(surface.Size(), 0);
-  std::vector<float> previous = surface.z;
   std::vector<float> opened;
   for (int radius = 1; radius <= max_radius_cells; ++radius) {
     opened = previous;
-    Open(surface.cols, surface.rows, OctagonForRadius(radius), &opened);
+    Open(cols, rows, OctagonForRadius(radius), &opened);
     const float threshold = static_cast<float>(slope * radius * surface.cell_m);
-    for (std::size_t i = 0; i < object.size(); ++i) {
-      if (previous[i] - opened[i] > threshold) object[i] = 1;
+    for (int row = 0; row < surface.rows; ++row) {
+      const std::size_t padded = static_cast<std::size_t>(row + pad) * cols + pad;
+      for (int col = 0; col < surface.cols; ++col) {
+        if (previous[padded + col] - opened[padded + col] > threshold) {
+          object[surface.Index(col, row)] = 1;
+        }
+      }
     }
     previous.swap(opened);
     if (progress) progress(radius, max_radius_cells);

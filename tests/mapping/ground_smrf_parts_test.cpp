@@ -124,6 +124,22 @@ TEST(SmrfProgressiveFilter, FlagsABuildingNarrowerThanTheWindowOnly) {
   EXPECT_FALSE(object[surface.Index(40, 5)]);
 }
 
+// The surface continues flat beyond the border: a slope rising to the edge of the data is not
+// a raised object there (with the windows cut at the border it was, by slope x radius).
+TEST(SmrfProgressiveFilter, SlopesRunningOffTheGridAreNotFlagged) {
+  Raster surface = Flat(50, 40, 0.f);
+  for (int row = 0; row < surface.rows; ++row) {
+    for (int col = 0; col < surface.cols; ++col) {
+      surface.z[surface.Index(col, row)] = 0.7f * col + 0.3f * row;  // 35 deg along x
+    }
+  }
+  const std::vector<uint8_t> object = ProgressiveFilter(surface, 0.15, 12);
+  // Only the highest corner may go: continued flat along both edges it is the convex corner
+  // of a plateau, which an opening rounds off.
+  EXPECT_LE(std::count(object.begin(), object.end(), 1), 1);
+  EXPECT_FALSE(object[surface.Index(surface.cols - 2, surface.rows - 2)]);
+}
+
 TEST(SmrfInpaint, ReproducesAPlaneAcrossAGap) {
   Raster raster = CoveringRaster({0, 0}, {79.5, 49.5}, 1.0);
   for (int row = 0; row < raster.rows; ++row) {
