@@ -114,6 +114,30 @@ bool ParseClothHoleFill(const std::string& name, ClothHoleFill* fill) {
   return false;
 }
 
+SmrfOptions LeaveOneOutSmrfOptions() {
+  SmrfOptions options;
+  options.cell_m = 1.0;
+  options.slope = 0.1;
+  options.max_window_m = 24.0;
+  options.elevation_threshold_m = 0.7;
+  options.elevation_scaler = 1.25;
+  return options;
+}
+
+ClothFilterOptions LeaveOneOutCsfOptions() {
+  ClothFilterOptions options;
+  options.cloth_resolution_m = 0.5;
+  options.rigidness = 6;
+  options.hole_fill = ClothHoleFill::kNearest;
+  return options;
+}
+
+GroundFilterOptions GroundFilterOptions::ForRobotMaps() {
+  GroundFilterOptions options;
+  options.smrf.elevation_threshold_m = 0.15;
+  return options;
+}
+
 bool GroundFilterOptions::IsValid(std::string* why) const {
   std::string inner;
   const bool valid = method == GroundMethod::kCsf ? csf.IsValid(&inner) : smrf.IsValid(&inner);

@@ -157,11 +157,33 @@ INSTANTIATE_TEST_SUITE_P(BothBackEnds, GroundBackEnd,
                            return std::string(ToString(info.param));
                          });
 
+// The defaults are the leave-one-out choices (ground_filter_data_test checks them against the
+// choice itself); the robot-map preset differs only in SMRF's elevation threshold.
+TEST(GroundFilterOptions, DefaultsAreTheLeaveOneOutChoicesAndValid) {
+  const GroundFilterOptions defaults;
+  std::string why;
+  EXPECT_TRUE(defaults.IsValid(&why)) << why;
+  EXPECT_EQ(defaults.method, GroundMethod::kSmrf);
+  EXPECT_DOUBLE_EQ(defaults.smrf.max_window_m, LeaveOneOutSmrfOptions().max_window_m);
+  EXPECT_DOUBLE_EQ(defaults.csf.cloth_resolution_m, LeaveOneOutCsfOptions().cloth_resolution_m);
+  EXPECT_TRUE(LeaveOneOutCsfOptions().IsValid(&why)) << why;
+  const GroundFilterOptions robot = GroundFilterOptions::ForRobotMaps();
+  EXPECT_TRUE(robot.IsValid(&why)) << why;
+  EXPECT_EQ(robot.method, GroundMethod::kSmrf);
+  EXPECT_LT(robot.smrf.elevation_threshold_m, defaults.smrf.elevation_threshold_m);
+  EXPECT_DOUBLE_EQ(robot.smrf.slope, defaults.smrf.slope);
+  EXPECT_DOUBLE_EQ(robot.smrf.elevation_scaler, defaults.smrf.elevation_scaler);
+}
+
 TEST(GroundMethod, UnknownNameIsRejected) {
   GroundMethod method = GroundMethod::kCsf;
   EXPECT_FALSE(ParseGroundMethod("pmf", &method));
   EXPECT_FALSE(ParseGroundMethod("", &method));
   EXPECT_EQ(method, GroundMethod::kCsf);
+  ClothHoleFill fill = ClothHoleFill::kNearest;
+  EXPECT_FALSE(ParseClothHoleFill("sideways", &fill));
+  ASSERT_TRUE(ParseClothHoleFill(ToString(ClothHoleFill::kReferenceScanline), &fill));
+  EXPECT_EQ(fill, ClothHoleFill::kReferenceScanline);
 }
 
 }  // namespace

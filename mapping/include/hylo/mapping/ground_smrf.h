@@ -31,8 +31,8 @@
 namespace hylo::mapping {
 
 /// Defaults: the paper's single parameter set for all 15 ISPRS samples (c 1 m, s 0.15,
-/// w 18 m, et 0.5 m, es 1.25) until the leave-one-out choice on the held samples replaces them
-/// (see the README's ground filter section).
+/// w 18 m, et 0.5 m, es 1.25). `hylo ground` uses GroundFilterOptions, which carries the
+/// setting chosen by leave-one-out on the held samples (LeaveOneOutSmrfOptions).
 struct SmrfOptions {
   double cell_m = 1.0;                 ///< paper c: minimum-surface cell size, m (> 0)
   double slope = 0.15;                 ///< paper s: slope tolerance of the opening, rise over
