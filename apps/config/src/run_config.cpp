@@ -92,7 +92,7 @@ bool RunConfig::IsValid(std::string* why) const {
          SectionValid(sliding_window, "sliding_window", why) &&
          SectionValid(planes, "planes", why) &&
          SectionValid(map, "map", why) && SectionValid(localization, "localization", why) &&
-         SectionValid(output, "output", why);
+         SectionValid(output, "output", why) && SectionValid(ground, "ground", why);
 }
 
 bool MapConfig::IsValid(std::string* why) const {

@@ -79,4 +79,18 @@ void YamlReadVisitor::Convert(const YAML::Node& node, const std::string& key_pat
   }
 }
 
+void YamlReadVisitor::Convert(const YAML::Node& node, const std::string& key_path,
+                              mapping::GroundMethod* value) const {
+  if (!node.IsScalar() || !mapping::ParseGroundMethod(node.Scalar(), value)) {
+    Fail(key_path, "expected smrf or csf; got " + Describe(node));
+  }
+}
+
+void YamlReadVisitor::Convert(const YAML::Node& node, const std::string& key_path,
+                              mapping::ClothHoleFill* value) const {
+  if (!node.IsScalar() || !mapping::ParseClothHoleFill(node.Scalar(), value)) {
+    Fail(key_path, "expected mean, nearest or reference; got " + Describe(node));
+  }
+}
+
 }  // namespace hylo::config

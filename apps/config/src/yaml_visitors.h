@@ -60,6 +60,10 @@ class YamlReadVisitor {
   void Convert(const YAML::Node& node, const std::string& key_path, Eigen::Vector3d* value) const;
   void Convert(const YAML::Node& node, const std::string& key_path,
                io::PointTimeConvention* value) const;
+  void Convert(const YAML::Node& node, const std::string& key_path,
+               mapping::GroundMethod* value) const;
+  void Convert(const YAML::Node& node, const std::string& key_path,
+               mapping::ClothHoleFill* value) const;
 
   YAML::Node node_;
   std::string path_;
@@ -102,6 +106,8 @@ class YamlWriteVisitor {
     *out_ << YAML::Flow << YAML::BeginSeq << value.x() << value.y() << value.z() << YAML::EndSeq;
   }
   void Emit(io::PointTimeConvention value) { *out_ << io::ToString(value); }
+  void Emit(mapping::GroundMethod value) { *out_ << mapping::ToString(value); }
+  void Emit(mapping::ClothHoleFill value) { *out_ << mapping::ToString(value); }
 
   YAML::Emitter* out_;
 };

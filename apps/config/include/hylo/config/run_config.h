@@ -10,6 +10,7 @@
 #include "hylo/estimation/imu_noise.h"
 #include "hylo/estimation/odometry_pipeline.h"
 #include "hylo/io/log_reader.h"
+#include "hylo/mapping/ground_filter.h"
 
 namespace hylo::config {
 
@@ -96,6 +97,10 @@ struct RunConfig {
   MapConfig map;                                  ///< map downsampling, window, hybrid mode
   LocalizationConfig localization;                ///< prior-map localization
   OutputConfig output;                            ///< extra outputs of a run
+  /// Offline ground extraction of the run's map (`hylo demo`'s chain): method smrf | csf and
+  /// each back-end's options; defaults for a ground robot's map (GroundFilterOptions::
+  /// ForRobotMaps: SMRF, elevation threshold 0.15 m).
+  mapping::GroundFilterOptions ground = mapping::GroundFilterOptions::ForRobotMaps();
 
   /// Checks every section; *why names the field (with its section), value and constraint.
   bool IsValid(std::string* why) const;
