@@ -108,13 +108,15 @@ SmrfSurface ComputeSmrfSurface(const registration::PointCloud& points_local,
   // window that covers one is opened down to its depth, and where such pits are common (one
   // per few hundred m^2) nearly every cell ends up flagged.
   const std::vector<uint8_t> low = FindLowOutlierCells(filled, options);
-  smrf::Raster without_low = minimum;
-  for (std::size_t i = 0; i < low.size(); ++i) {
-    if (low[i]) without_low.z[i] = std::numeric_limits<float>::quiet_NaN();
-  }
-  if (AnyKnown(without_low)) {
-    smrf::InpaintMembrane(&without_low);
-    filled = std::move(without_low);
+  if (std::find(low.begin(), low.end(), 1) != low.end()) {
+    smrf::Raster without_low = minimum;
+    for (std::size_t i = 0; i < low.size(); ++i) {
+      if (low[i]) without_low.z[i] = std::numeric_limits<float>::quiet_NaN();
+    }
+    if (AnyKnown(without_low)) {
+      smrf::InpaintMembrane(&without_low);
+      filled = std::move(without_low);
+    }
   }
   // Step 3.
   surface.max_window_cells = CellsFor(options.max_window_m, options.cell_m);
@@ -142,15 +144,17 @@ void ClassifySmrf(const registration::PointCloud& points_local, const SmrfSurfac
   result->height_above_surface_m.assign(points_local.size(),
                                         std::numeric_limits<float>::quiet_NaN());
   result->num_ground = result->num_objects = result->num_invalid = 0;
+  // Height and slope side by side: one cache line per corner when points come in no order.
+  const smrf::PairRaster dem_and_slope(surface.dem, surface.slope);
   for (std::size_t i = 0; i < points_local.size(); ++i) {
     const Eigen::Vector3f& p = points_local[i];
     if (!p.allFinite()) {
       ++result->num_invalid;
       continue;
     }
-    const double above_m = p.z() - surface.dem.Sample(p.x(), p.y());
-    const double threshold_m =
-        elevation_threshold_m + elevation_scaler * surface.slope.Sample(p.x(), p.y());
+    const Eigen::Vector2d dem_slope = dem_and_slope.Sample(p.x(), p.y());
+    const double above_m = p.z() - dem_slope.x();
+    const double threshold_m = elevation_threshold_m + elevation_scaler * dem_slope.y();
     result->height_above_surface_m[i] = static_cast<float>(above_m);
     const bool ground = std::abs(above_m) <= threshold_m;
     result->labels[i] = ground ? GroundLabel::kGround : GroundLabel::kObject;

@@ -80,20 +80,28 @@ void FilterDownLines(int dc, int r, Work* work) {
   for (int row = 0; row < rows; ++row) {
     const float* in = work->Row(work->z, row);
     float* g = work->Row(work->g, row);
-    std::copy_n(in, cols, g);
-    if (row % w == 0) continue;
+    if (row % w == 0) {
+      std::copy_n(in, cols, g);
+      continue;
+    }
     const float* above = work->Row(work->g, row - 1);
+    for (int col = 0; col < from; ++col) g[col] = in[col];  // lines starting on this row
     for (int col = from; col < to; ++col) g[col] = Op::Apply(above[col - dc], in[col]);
+    for (int col = to; col < cols; ++col) g[col] = in[col];
   }
   for (int row = rows - 1; row >= 0; --row) {
     const float* in = work->Row(work->z, row);
     float* h = work->Row(work->h, row);
-    std::copy_n(in, cols, h);
-    if (row % w == w - 1 || row == rows - 1) continue;
+    if (row % w == w - 1 || row == rows - 1) {
+      std::copy_n(in, cols, h);
+      continue;
+    }
     const float* below = work->Row(work->h, row + 1);
+    for (int col = 0; col < cols - to; ++col) h[col] = in[col];  // lines ending on this row
     for (int col = cols - to; col < cols - from; ++col) {  // cols with a (col + dc)
       h[col] = Op::Apply(below[col + dc], in[col]);
     }
+    for (int col = cols - from; col < cols; ++col) h[col] = in[col];
   }
   const int shift = dc * r;
   const int margin = std::abs(shift);

@@ -46,6 +46,26 @@ double Raster::Sample(double x, double y) const {
   return (1.0 - wy) * bottom + wy * top;
 }
 
+PairRaster::PairRaster(const Raster& first, const Raster& second) {
+  HYLO_CHECK(first.cols == second.cols && first.rows == second.rows, "one geometry");
+  geometry_ = first;
+  geometry_.z.clear();
+  values_.resize(first.Size());
+  for (std::size_t i = 0; i < values_.size(); ++i) values_[i] = {first.z[i], second.z[i]};
+}
+
+Eigen::Vector2d PairRaster::Sample(double x, double y) const {
+  const Raster& g = geometry_;
+  int c0, c1, r0, r1;
+  double wx, wy;
+  Bracket((x - g.origin_xy.x()) / g.cell_m, g.cols, &c0, &c1, &wx);
+  Bracket((y - g.origin_xy.y()) / g.cell_m, g.rows, &r0, &r1, &wy);
+  const auto at = [&](int c, int r) { return values_[g.Index(c, r)].cast<double>(); };
+  const Eigen::Vector2d bottom = (1.0 - wx) * at(c0, r0) + wx * at(c1, r0);
+  const Eigen::Vector2d top = (1.0 - wx) * at(c0, r1) + wx * at(c1, r1);
+  return (1.0 - wy) * bottom + wy * top;
+}
+
 double CoveringCellCount(const Eigen::Vector2d& min_xy, const Eigen::Vector2d& max_xy,
                          double cell_m) {
   const Eigen::Vector2d extent = (max_xy - min_xy) / cell_m;

@@ -35,6 +35,18 @@ struct Raster {
   double Sample(double x, double y) const;
 };
 
+/// Two rasters of one geometry interleaved, sampled together (bilinear, as Raster::Sample).
+class PairRaster {
+ public:
+  PairRaster(const Raster& first, const Raster& second);
+  /// (first, second) at (x, y).
+  Eigen::Vector2d Sample(double x, double y) const;
+
+ private:
+  Raster geometry_;                  ///< z left empty
+  std::vector<Eigen::Vector2f> values_;  ///< per cell, row-major
+};
+
 /// An empty raster (z all NaN) of `cell_m` cells covering [min_xy, max_xy].
 Raster CoveringRaster(const Eigen::Vector2d& min_xy, const Eigen::Vector2d& max_xy,
                       double cell_m);
