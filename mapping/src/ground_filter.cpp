@@ -6,6 +6,22 @@
 namespace hylo::mapping {
 namespace {
 
+// The fields both back-ends' results share, moved into the common result.
+template <class BackEndResult>
+GroundFilterResult MoveCommon(GroundMethod method, BackEndResult* r, std::vector<float>* heights) {
+  GroundFilterResult result;
+  result.method = method;
+  result.ok = r->ok;
+  result.message = std::move(r->message);
+  result.labels = std::move(r->labels);
+  result.height_above_ground_m = std::move(*heights);
+  result.num_ground = r->num_ground;
+  result.num_objects = r->num_objects;
+  result.num_invalid = r->num_invalid;
+  result.origin_world = r->origin_world;
+  return result;
+}
+
 class ClothGroundFilter : public GroundFilter {
  public:
   explicit ClothGroundFilter(const ClothFilterOptions& options) : options_(options) {}
@@ -14,16 +30,8 @@ class ClothGroundFilter : public GroundFilter {
   GroundFilterResult Extract(const std::vector<Eigen::Vector3d>& points_world,
                              const GroundProgress& progress) const override {
     ClothFilterResult cloth = FilterGround(points_world, options_, progress);
-    GroundFilterResult result;
-    result.method = GroundMethod::kCsf;
-    result.ok = cloth.ok;
-    result.message = std::move(cloth.message);
-    result.labels = std::move(cloth.labels);
-    result.height_above_ground_m = std::move(cloth.height_above_cloth_m);
-    result.num_ground = cloth.num_ground;
-    result.num_objects = cloth.num_objects;
-    result.num_invalid = cloth.num_invalid;
-    result.origin_world = cloth.origin_world;
+    GroundFilterResult result =
+        MoveCommon(GroundMethod::kCsf, &cloth, &cloth.height_above_cloth_m);
     CsfStats& s = result.csf;
     s.iterations = cloth.iterations;
     s.converged = cloth.converged;
@@ -48,16 +56,8 @@ class SmrfGroundFilter : public GroundFilter {
   GroundFilterResult Extract(const std::vector<Eigen::Vector3d>& points_world,
                              const GroundProgress& progress) const override {
     SmrfResult smrf = FilterGroundSmrf(points_world, options_, progress);
-    GroundFilterResult result;
-    result.method = GroundMethod::kSmrf;
-    result.ok = smrf.ok;
-    result.message = std::move(smrf.message);
-    result.labels = std::move(smrf.labels);
-    result.height_above_ground_m = std::move(smrf.height_above_surface_m);
-    result.num_ground = smrf.num_ground;
-    result.num_objects = smrf.num_objects;
-    result.num_invalid = smrf.num_invalid;
-    result.origin_world = smrf.origin_world;
+    GroundFilterResult result =
+        MoveCommon(GroundMethod::kSmrf, &smrf, &smrf.height_above_surface_m);
     SmrfStats& s = result.smrf;
     s.grid_cols = smrf.grid_cols;
     s.grid_rows = smrf.grid_rows;

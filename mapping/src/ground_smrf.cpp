@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "hylo/common/check.h"
+#include "hylo/common/option_error.h"
 #include "hylo/mapping/ground_smrf_inpaint.h"
 #include "hylo/mapping/ground_smrf_morphology.h"
 #include "hylo/mapping/local_origin.h"
@@ -17,13 +18,8 @@ namespace hylo::mapping {
 namespace {
 
 template <typename T>
-bool Fail(std::string* why, const char* field, T value, const char* constraint) {
-  if (why != nullptr) {
-    std::ostringstream os;
-    os << "SmrfOptions." << field << " = " << value << ": must be " << constraint;
-    *why = os.str();
-  }
-  return false;
+bool Fail(std::string* why, const char* field, const T& value, const char* constraint) {
+  return OptionError(why, "SmrfOptions", field, value, constraint);
 }
 
 // The paper converts window radii from metres to cells by rounding up; the tolerance keeps

@@ -24,11 +24,9 @@ using hylo::io::Json;
 using namespace hylo::mapping::isprs;
 
 void PrintTable(const std::vector<Sample>& samples, const ConfusionTable& table, std::size_t s) {
-  std::printf("  sample   typeI%%  typeII%%  total%%  kappa%%\n");
+  std::printf("  %s\n", TableHeader());
   for (std::size_t k = 0; k < samples.size(); ++k) {
-    const Confusion& c = table[s][k];
-    std::printf("  %-7s %7.2f %8.2f %7.2f %7.2f\n", samples[k].name.c_str(), 100 * c.TypeI(),
-                100 * c.TypeII(), 100 * c.Total(), 100 * c.Kappa());
+    std::printf("  %s\n", TableRow(samples[k].name, table[s][k]).c_str());
   }
   std::printf("  mean    %24.2f\n", MeanTotalPercent(table, s));
 }
@@ -86,16 +84,8 @@ Json RunBackEnd(const char* name, const std::vector<Setting>& grid, const std::s
   }
   std::printf("    mean    %6.2f %%\n", tuned_sum / samples.size());
   const LeaveOneOutResult loo = LeaveOneOut(table);
-  std::printf("  leave-one-out: sample held out -> setting chosen on the other six, its error\n");
-  for (std::size_t k = 0; k < samples.size(); ++k) {
-    std::printf("    %-7s %6.2f %%  %s\n", samples[k].name.c_str(), loo.held_out_percent[k],
-                grid[loo.chosen[k]].label.c_str());
-  }
-  std::printf("  mean total error: left out %.2f %%, in-sample %.2f %% (%s)\n",
-              loo.held_out_mean_percent, loo.in_sample_mean_percent,
-              grid[loo.in_sample_best].label.c_str());
-  std::printf("  most often chosen: %s (in-sample mean %.2f %%)\n",
-              grid[loo.most_chosen].label.c_str(), MeanTotalPercent(table, loo.most_chosen));
+  std::printf("  leave-one-out:\n%s",
+              FormatLeaveOneOut(grid, samples, table, loo, "    ").c_str());
   PrintTable(samples, table, loo.most_chosen);
   Json j = Json::MakeObject();
   j["settings"] = grid.size();

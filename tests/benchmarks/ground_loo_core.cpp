@@ -1,6 +1,7 @@
 #include "benchmarks/ground_loo_core.h"
 
 #include <algorithm>
+#include <iomanip>
 #include <map>
 #include <sstream>
 #include <tuple>
@@ -171,6 +172,23 @@ LeaveOneOutResult LeaveOneOut(const ConfusionTable& table) {
     if (more || tie_better) r.most_chosen = s;
   }
   return r;
+}
+
+std::string FormatLeaveOneOut(const std::vector<Setting>& grid, const std::vector<Sample>& samples,
+                              const ConfusionTable& table, const LeaveOneOutResult& loo,
+                              const std::string& indent) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(2);
+  os << indent << "held out  total%  setting chosen on the other samples\n";
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    os << indent << std::left << std::setw(7) << samples[k].name << std::right << std::setw(8)
+       << loo.held_out_percent[k] << "   " << grid[loo.chosen[k]].label << "\n";
+  }
+  os << indent << "mean total error: left out " << loo.held_out_mean_percent << " %, in-sample "
+     << loo.in_sample_mean_percent << " % (" << grid[loo.in_sample_best].label << ")\n";
+  os << indent << "most often chosen: " << grid[loo.most_chosen].label << " (in-sample mean "
+     << MeanTotalPercent(table, loo.most_chosen) << " %)\n";
+  return os.str();
 }
 
 }  // namespace hylo::mapping::isprs

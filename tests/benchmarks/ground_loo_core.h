@@ -55,4 +55,10 @@ struct LeaveOneOutResult {
 /// Ties between settings go to the first in grid order.
 LeaveOneOutResult LeaveOneOut(const ConfusionTable& table);
 
+/// Lines (each starting with `indent`): every held-out sample with its error and the setting
+/// chosen without it, the left-out and in-sample means, the setting chosen most often.
+std::string FormatLeaveOneOut(const std::vector<Setting>& grid, const std::vector<Sample>& samples,
+                              const ConfusionTable& table, const LeaveOneOutResult& loo,
+                              const std::string& indent);
+
 }  // namespace hylo::mapping::isprs

@@ -1,6 +1,7 @@
 #include "benchmarks/isprs_eval.h"
 
 #include <cmath>
+#include <cstdio>
 #include <unordered_set>
 
 #include "hylo/io/cloud_io.h"
@@ -50,6 +51,15 @@ Confusion Score(const Sample& sample, const std::vector<GroundLabel>& labels) {
                          : (said ? c.object_as_ground : c.object_as_object)) += 1;
   }
   return c;
+}
+
+const char* TableHeader() { return "sample   typeI%  typeII%  total%  kappa%"; }
+
+std::string TableRow(const std::string& name, const Confusion& c) {
+  char row[96];
+  std::snprintf(row, sizeof(row), "%-7s %7.2f %8.2f %7.2f %7.2f", name.c_str(), 100 * c.TypeI(),
+                100 * c.TypeII(), 100 * c.Total(), 100 * c.Kappa());
+  return row;
 }
 
 }  // namespace hylo::mapping::isprs

@@ -56,4 +56,8 @@ Sample LoadSample(const std::string& name);
 /// Labels (one per point of `sample`) against the reference; invalid labels count as objects.
 Confusion Score(const Sample& sample, const std::vector<GroundLabel>& labels);
 
+/// The header and one row of the per-sample tables: name, type I, type II, total, kappa (%).
+const char* TableHeader();
+std::string TableRow(const std::string& name, const Confusion& c);
+
 }  // namespace hylo::mapping::isprs

@@ -29,14 +29,13 @@ constexpr double kSmrfLeftOutBoundPercent = 4.4;
 // Prints the table of `options` on every sample and returns the mean total error, %.
 double PrintTable(const std::vector<isprs::Sample>& samples, const GroundFilterOptions& options,
                   const std::string& title) {
-  std::printf("ISPRS, %s\nsample   typeI%%  typeII%%  total%%  kappa%%\n", title.c_str());
+  std::printf("ISPRS, %s\n%s\n", title.c_str(), isprs::TableHeader());
   double sum = 0.0;
   for (const isprs::Sample& sample : samples) {
     const GroundFilterResult result = ExtractGround(sample.points, options);
     EXPECT_TRUE(result.ok) << sample.name << ": " << result.message;
     const Confusion c = isprs::Score(sample, result.labels);
-    std::printf("%-7s %7.2f %8.2f %7.2f %7.2f\n", sample.name.c_str(), 100 * c.TypeI(),
-                100 * c.TypeII(), 100 * c.Total(), 100 * c.Kappa());
+    std::printf("%s\n", isprs::TableRow(sample.name, c).c_str());
     sum += 100 * c.Total();
   }
   const double mean = sum / samples.size();
@@ -73,15 +72,8 @@ TEST(GroundFilterIsprs, SmrfLeaveOneOutChoosesTheDefaults) {
   const std::vector<isprs::Setting> grid = isprs::SmrfGrid();
   const isprs::ConfusionTable table = isprs::EvaluateGrid(grid, samples);
   const isprs::LeaveOneOutResult loo = isprs::LeaveOneOut(table);
-  std::printf("SMRF grid (%s)\nheld out  total%%  setting chosen on the other six\n",
-              isprs::DescribeSmrfGrid().c_str());
-  for (std::size_t k = 0; k < samples.size(); ++k) {
-    std::printf("%-7s %7.2f   %s\n", samples[k].name.c_str(), loo.held_out_percent[k],
-                grid[loo.chosen[k]].label.c_str());
-  }
-  std::printf("mean total error: left out %.2f %%, in-sample %.2f %% (%s)\n",
-              loo.held_out_mean_percent, loo.in_sample_mean_percent,
-              grid[loo.in_sample_best].label.c_str());
+  std::printf("SMRF grid (%s)\n%s", isprs::DescribeSmrfGrid().c_str(),
+              isprs::FormatLeaveOneOut(grid, samples, table, loo, "").c_str());
   RecordProperty("smrf_left_out_mean_total_percent", std::to_string(loo.held_out_mean_percent));
   RecordProperty("smrf_in_sample_mean_total_percent", std::to_string(loo.in_sample_mean_percent));
   EXPECT_LE(loo.held_out_mean_percent, kSmrfLeftOutBoundPercent);
