@@ -22,53 +22,54 @@ GroundFilterResult MoveCommon(GroundMethod method, BackEndResult* r, std::vector
   return result;
 }
 
-class ClothGroundFilter : public GroundFilter {
+// Per back-end: how it runs, where its heights are, what it reports beyond the labels.
+ClothFilterResult Run(const std::vector<Eigen::Vector3d>& points_world,
+                      const ClothFilterOptions& options, const GroundProgress& progress) {
+  return FilterGround(points_world, options, progress);
+}
+SmrfResult Run(const std::vector<Eigen::Vector3d>& points_world, const SmrfOptions& options,
+               const GroundProgress& progress) {
+  return FilterGroundSmrf(points_world, options, progress);
+}
+std::vector<float>* Heights(ClothFilterResult* r) { return &r->height_above_cloth_m; }
+std::vector<float>* Heights(SmrfResult* r) { return &r->height_above_surface_m; }
+
+void CopyStats(const ClothFilterResult& cloth, GroundFilterResult* result) {
+  CsfStats& s = result->csf;
+  s.iterations = cloth.iterations;
+  s.converged = cloth.converged;
+  s.last_max_displacement_m = cloth.last_max_displacement_m;
+  s.cloth_cols = cloth.cloth_cols;
+  s.cloth_rows = cloth.cloth_rows;
+  s.num_hole_particles = cloth.num_hole_particles;
+  s.num_pinned_by_slope = cloth.num_pinned_by_slope;
+  s.num_low_outliers = cloth.num_low_outliers;
+}
+void CopyStats(const SmrfResult& smrf, GroundFilterResult* result) {
+  SmrfStats& s = result->smrf;
+  s.grid_cols = smrf.grid_cols;
+  s.grid_rows = smrf.grid_rows;
+  s.num_empty_cells = smrf.num_empty_cells;
+  s.num_low_outlier_cells = smrf.num_low_outlier_cells;
+  s.num_object_cells = smrf.num_object_cells;
+}
+
+template <class Options, GroundMethod kMethod>
+class BackEnd : public GroundFilter {
  public:
-  explicit ClothGroundFilter(const ClothFilterOptions& options) : options_(options) {}
-  GroundMethod Method() const override { return GroundMethod::kCsf; }
+  explicit BackEnd(const Options& options) : options_(options) {}
+  GroundMethod Method() const override { return kMethod; }
 
   GroundFilterResult Extract(const std::vector<Eigen::Vector3d>& points_world,
                              const GroundProgress& progress) const override {
-    ClothFilterResult cloth = FilterGround(points_world, options_, progress);
-    GroundFilterResult result =
-        MoveCommon(GroundMethod::kCsf, &cloth, &cloth.height_above_cloth_m);
-    CsfStats& s = result.csf;
-    s.iterations = cloth.iterations;
-    s.converged = cloth.converged;
-    s.last_max_displacement_m = cloth.last_max_displacement_m;
-    s.cloth_cols = cloth.cloth_cols;
-    s.cloth_rows = cloth.cloth_rows;
-    s.num_hole_particles = cloth.num_hole_particles;
-    s.num_pinned_by_slope = cloth.num_pinned_by_slope;
-    s.num_low_outliers = cloth.num_low_outliers;
+    auto split = Run(points_world, options_, progress);
+    GroundFilterResult result = MoveCommon(kMethod, &split, Heights(&split));
+    CopyStats(split, &result);
     return result;
   }
 
  private:
-  ClothFilterOptions options_;
-};
-
-class SmrfGroundFilter : public GroundFilter {
- public:
-  explicit SmrfGroundFilter(const SmrfOptions& options) : options_(options) {}
-  GroundMethod Method() const override { return GroundMethod::kSmrf; }
-
-  GroundFilterResult Extract(const std::vector<Eigen::Vector3d>& points_world,
-                             const GroundProgress& progress) const override {
-    SmrfResult smrf = FilterGroundSmrf(points_world, options_, progress);
-    GroundFilterResult result =
-        MoveCommon(GroundMethod::kSmrf, &smrf, &smrf.height_above_surface_m);
-    SmrfStats& s = result.smrf;
-    s.grid_cols = smrf.grid_cols;
-    s.grid_rows = smrf.grid_rows;
-    s.num_empty_cells = smrf.num_empty_cells;
-    s.num_low_outlier_cells = smrf.num_low_outlier_cells;
-    s.num_object_cells = smrf.num_object_cells;
-    return result;
-  }
-
- private:
-  SmrfOptions options_;
+  Options options_;
 };
 
 }  // namespace
@@ -150,9 +151,9 @@ std::unique_ptr<GroundFilter> GroundFilter::Create(const GroundFilterOptions& op
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   switch (options.method) {
     case GroundMethod::kCsf:
-      return std::make_unique<ClothGroundFilter>(options.csf);
+      return std::make_unique<BackEnd<ClothFilterOptions, GroundMethod::kCsf>>(options.csf);
     case GroundMethod::kSmrf:
-      return std::make_unique<SmrfGroundFilter>(options.smrf);
+      return std::make_unique<BackEnd<SmrfOptions, GroundMethod::kSmrf>>(options.smrf);
   }
   throw std::invalid_argument("GroundFilterOptions.method: unknown back-end");
 }
