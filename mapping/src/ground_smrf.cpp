@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <limits>
 #include <sstream>
-#include <utility>
 #include <stdexcept>
+#include <utility>
 
 #include "hylo/common/check.h"
 #include "hylo/common/option_error.h"

@@ -20,7 +20,7 @@ constexpr float kOverRelaxation = 1.5f;
 
 struct Grid {
   int cols = 0, rows = 0;
-  std::vector<float> z;         // NaN = unknown
+  std::vector<float> z;  // NaN = unknown
   std::size_t Index(int col, int row) const { return static_cast<std::size_t>(row) * cols + col; }
 };
 
@@ -62,7 +62,8 @@ float Prolong(const Grid& coarse, int col, int row) {
   float wx, wy;
   bracket(col, coarse.cols, &c0, &c1, &wx);
   bracket(row, coarse.rows, &r0, &r1, &wy);
-  const float bottom = (1 - wx) * coarse.z[coarse.Index(c0, r0)] + wx * coarse.z[coarse.Index(c1, r0)];
+  const float bottom =
+      (1 - wx) * coarse.z[coarse.Index(c0, r0)] + wx * coarse.z[coarse.Index(c1, r0)];
   const float top = (1 - wx) * coarse.z[coarse.Index(c0, r1)] + wx * coarse.z[coarse.Index(c1, r1)];
   return (1 - wy) * bottom + wy * top;
 }

@@ -52,7 +52,9 @@ void FilterLine(const float* in, int n, int r, float* g, float* h, float* out) {
 struct Work {
   int cols = 0, rows = 0;
   std::vector<float> z, g, h, out;
-  float* Row(std::vector<float>& v, int row) { return v.data() + static_cast<std::size_t>(row) * cols; }
+  float* Row(std::vector<float>& v, int row) {
+    return v.data() + static_cast<std::size_t>(row) * cols;
+  }
 };
 
 // Lines along x, each filtered on its own (windows clipped at the row's ends).
@@ -98,7 +100,7 @@ void FilterDownLines(int dc, int r, Work* work) {
     }
     const float* below = work->Row(work->h, row + 1);
     for (int col = 0; col < cols - to; ++col) h[col] = in[col];  // lines ending on this row
-    for (int col = cols - to; col < cols - from; ++col) {  // cols with a (col + dc)
+    for (int col = cols - to; col < cols - from; ++col) {        // cols with a (col + dc)
       h[col] = Op::Apply(below[col + dc], in[col]);
     }
     for (int col = cols - from; col < cols; ++col) h[col] = in[col];

@@ -72,8 +72,7 @@ double CoveringCellCount(const Eigen::Vector2d& min_xy, const Eigen::Vector2d& m
   return (std::floor(extent.x()) + 1.0) * (std::floor(extent.y()) + 1.0);
 }
 
-Raster CoveringRaster(const Eigen::Vector2d& min_xy, const Eigen::Vector2d& max_xy,
-                      double cell_m) {
+Raster CoveringRaster(const Eigen::Vector2d& min_xy, const Eigen::Vector2d& max_xy, double cell_m) {
   HYLO_CHECK(cell_m > 0.0 && (max_xy - min_xy).minCoeff() >= 0.0, "a box and a cell size");
   Raster raster;
   raster.origin_xy = min_xy;

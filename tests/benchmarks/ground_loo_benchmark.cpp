@@ -1,7 +1,8 @@
 // Leave-one-out choice of each ground back-end's defaults on the 7 held ISPRS samples
 // (ground_loo_core.h): prints the grid, its best settings in-sample, the best setting of each
 // sample on its own, the setting chosen with each sample held out and that sample's error, the
-// means, and the per-sample table of the setting chosen most often. Skips (exit 0, says so) when ../shared/data/isprs is absent.
+// means, and the per-sample table of the setting chosen most often. Skips (exit 0, says so) when
+// ../shared/data/isprs is absent.
 //   hylo_ground_loo_benchmark [--method smrf|csf|both] [--top N] [--json FILE]
 //                             [--csv PREFIX]  (PREFIX_smrf.csv, PREFIX_csf.csv: every setting
 //                                              on every sample)
@@ -84,8 +85,7 @@ Json RunBackEnd(const char* name, const std::vector<Setting>& grid, const std::s
   }
   std::printf("    mean    %6.2f %%\n", tuned_sum / samples.size());
   const LeaveOneOutResult loo = LeaveOneOut(table);
-  std::printf("  leave-one-out:\n%s",
-              FormatLeaveOneOut(grid, samples, table, loo, "    ").c_str());
+  std::printf("  leave-one-out:\n%s", FormatLeaveOneOut(grid, samples, table, loo, "    ").c_str());
   PrintTable(samples, table, loo.most_chosen);
   Json j = Json::MakeObject();
   j["settings"] = grid.size();
@@ -105,13 +105,19 @@ int main(int argc, char** argv) {
   int top = 10;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--method" && i + 1 < argc) method = argv[++i];
-    else if (a == "--top" && i + 1 < argc) top = std::atoi(argv[++i]);
-    else if (a == "--json" && i + 1 < argc) json_path = argv[++i];
-    else if (a == "--csv" && i + 1 < argc) csv_prefix = argv[++i];
+    if (a == "--method" && i + 1 < argc)
+      method = argv[++i];
+    else if (a == "--top" && i + 1 < argc)
+      top = std::atoi(argv[++i]);
+    else if (a == "--json" && i + 1 < argc)
+      json_path = argv[++i];
+    else if (a == "--csv" && i + 1 < argc)
+      csv_prefix = argv[++i];
     else {
-      std::fprintf(stderr, "usage: %s [--method smrf|csf|both] [--top N] [--json FILE] "
-                   "[--csv PREFIX]\n", argv[0]);
+      std::fprintf(stderr,
+                   "usage: %s [--method smrf|csf|both] [--top N] [--json FILE] "
+                   "[--csv PREFIX]\n",
+                   argv[0]);
       return 2;
     }
   }

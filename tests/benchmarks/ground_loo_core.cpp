@@ -164,11 +164,13 @@ LeaveOneOutResult LeaveOneOut(const ConfusionTable& table) {
     ++times_chosen[best];
   }
   for (const double e : r.held_out_percent) r.held_out_mean_percent += e / num_samples;
-  r.in_sample_best = static_cast<std::size_t>(std::min_element(sum.begin(), sum.end()) - sum.begin());
+  r.in_sample_best =
+      static_cast<std::size_t>(std::min_element(sum.begin(), sum.end()) - sum.begin());
   r.in_sample_mean_percent = sum[r.in_sample_best] / num_samples;
   for (std::size_t s = 0; s < table.size(); ++s) {
     const bool more = times_chosen[s] > times_chosen[r.most_chosen];
-    const bool tie_better = times_chosen[s] == times_chosen[r.most_chosen] && sum[s] < sum[r.most_chosen];
+    const bool tie_better =
+        times_chosen[s] == times_chosen[r.most_chosen] && sum[s] < sum[r.most_chosen];
     if (more || tie_better) r.most_chosen = s;
   }
   return r;

@@ -41,9 +41,9 @@ struct Confusion {
 
 /// One sample: its points (UTM) and, per point, whether the reference calls it ground.
 struct Sample {
-  std::string name;                       ///< "samp11"
-  std::vector<Eigen::Vector3d> points;    ///< m, UTM
-  std::vector<uint8_t> is_ground;         ///< per point
+  std::string name;                     ///< "samp11"
+  std::vector<Eigen::Vector3d> points;  ///< m, UTM
+  std::vector<uint8_t> is_ground;       ///< per point
 };
 
 /// The 7 samples in ../shared/data/isprs, in the order the tables print them.

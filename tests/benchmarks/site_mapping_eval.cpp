@@ -223,7 +223,8 @@ bool ParseArgs(int argc, char** argv, SiteEvalOptions* o, std::string* json_path
   if (support_voxel_m >= 0) o->craft.mls_support_voxel_m = support_voxel_m;
   o->measure_craft = only != "slope";
   o->measure_ground_and_slope = only != "craft";
-  if (!ground_method.empty() && !hylo::mapping::ParseGroundMethod(ground_method, &o->ground.method)) {
+  if (!ground_method.empty() &&
+      !hylo::mapping::ParseGroundMethod(ground_method, &o->ground.method)) {
     std::fprintf(stderr, "unknown ground method '%s' (smrf or csf)\n", ground_method.c_str());
     return false;
   }

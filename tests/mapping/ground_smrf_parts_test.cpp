@@ -36,8 +36,8 @@ std::vector<float> BruteForce(int cols, int rows, const Octagon& o, const std::v
   std::vector<float> out(z.size());
   for (int row = 0; row < rows; ++row) {
     for (int col = 0; col < cols; ++col) {
-      float best = erode ? std::numeric_limits<float>::infinity()
-                         : -std::numeric_limits<float>::infinity();
+      float best =
+          erode ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity();
       for (int dr = -reach; dr <= reach; ++dr) {
         for (int dc = -reach; dc <= reach; ++dc) {
           const int c = col + dc, r = row + dr;
@@ -110,10 +110,10 @@ Raster Flat(int cols, int rows, float z) {
 
 TEST(SmrfProgressiveFilter, FlagsABuildingNarrowerThanTheWindowOnly) {
   Raster surface = Flat(60, 60, 0.f);
-  for (int row = 10; row < 20; ++row) {       // 10 x 10 m, 6 m high
+  for (int row = 10; row < 20; ++row) {  // 10 x 10 m, 6 m high
     for (int col = 10; col < 20; ++col) surface.z[surface.Index(col, row)] = 6.f;
   }
-  for (int row = 30; row < 60; ++row) {       // 30 x 30 m plateau at the corner
+  for (int row = 30; row < 60; ++row) {  // 30 x 30 m plateau at the corner
     for (int col = 30; col < 60; ++col) surface.z[surface.Index(col, row)] = 6.f;
   }
   const std::vector<uint8_t> object = ProgressiveFilter(surface, 0.15, 8);

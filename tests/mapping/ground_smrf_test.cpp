@@ -77,9 +77,9 @@ TEST(Smrf, BanksUpTo35DegreesStayGround) {
 
 TEST(Smrf, BuildingsOnABankedSiteAreObjects) {
   SceneSpec spec = BanksAt(35.f);
-  spec.slabs = {{5, 10, 20, 30, 7},     // on the low ground
-                {45, 40, 65, 55, 10},   // on the plateau
-                {95, 90, 112, 110, 4}}; // a low shed
+  spec.slabs = {{5, 10, 20, 30, 7},      // on the low ground
+                {45, 40, 65, 55, 10},    // on the plateau
+                {95, 90, 112, 110, 4}};  // a low shed
   const Scene scene = MakeScene(spec);
   const SmrfResult result = FilterGroundSmrfLocal(scene.points, SmrfOptions{});
   ASSERT_TRUE(result.ok) << result.message;

@@ -15,9 +15,9 @@ namespace hylo::mapping::scenes {
 /// A raised rectangle: a building, or a bridge deck (deck_m > 0: a slab of that thickness at
 /// `top_m` absolute height rather than a box `top_m` above the terrain).
 struct Slab {
-  float x0, y0, x1, y1;  ///< footprint, m
-  float top_m;           ///< height above the terrain (building) or absolute (deck), m
-  bool absolute = false; ///< true: top_m is an absolute height (a deck over a cut)
+  float x0, y0, x1, y1;   ///< footprint, m
+  float top_m;            ///< height above the terrain (building) or absolute (deck), m
+  bool absolute = false;  ///< true: top_m is an absolute height (a deck over a cut)
   bool Contains(float x, float y) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1; }
 };
 
@@ -29,12 +29,12 @@ struct Scene {
 };
 
 struct SceneSpec {
-  float size_m = 100.f;         ///< square side, m
-  float density = 2.f;          ///< points per m^2
-  float noise_m = 0.05f;        ///< vertical noise, m
+  float size_m = 100.f;   ///< square side, m
+  float density = 2.f;    ///< points per m^2
+  float noise_m = 0.05f;  ///< vertical noise, m
   std::function<float(float, float)> terrain = [](float, float) { return 0.f; };
   std::vector<Slab> slabs;
-  int low_outliers = 0;           ///< isolated returns this many ...
+  int low_outliers = 0;              ///< isolated returns this many ...
   float low_outlier_depth_m = 10.f;  ///< ... this far below the terrain, m
   uint32_t seed = 1;
 };

@@ -43,11 +43,11 @@ SmrfOptions LeaveOneOutSmrfOptions();
 ClothFilterOptions LeaveOneOutCsfOptions();
 
 struct GroundFilterOptions {
-  GroundMethod method = GroundMethod::kSmrf;          ///< the back-end that runs: SMRF, the
-                                                      ///< better of the two left out (4.17 %
-                                                      ///< against 4.45 %)
-  ClothFilterOptions csf = LeaveOneOutCsfOptions();   ///< used when method is kCsf
-  SmrfOptions smrf = LeaveOneOutSmrfOptions();        ///< used when method is kSmrf
+  GroundMethod method = GroundMethod::kSmrf;         ///< the back-end that runs: SMRF, the
+                                                     ///< better of the two left out (4.17 %
+                                                     ///< against 4.45 %)
+  ClothFilterOptions csf = LeaveOneOutCsfOptions();  ///< used when method is kCsf
+  SmrfOptions smrf = LeaveOneOutSmrfOptions();       ///< used when method is kSmrf
 
   /// For maps a ground robot builds (points every few centimetres, centimetre noise): the
   /// defaults with SMRF's elevation threshold at 0.15 m. Such maps resolve objects lower than
@@ -64,13 +64,13 @@ struct GroundFilterOptions {
 
 /// What the cloth filter reports beyond the labels.
 struct CsfStats {
-  int iterations = 0;                   ///< simulation steps run
-  bool converged = false;               ///< stopped by the convergence threshold
-  double last_max_displacement_m = 0.0; ///< largest particle move in the last step, m
-  int cloth_cols = 0, cloth_rows = 0;   ///< particles along x and y
-  std::size_t num_hole_particles = 0;   ///< particles with no point under them (filled)
-  std::size_t num_pinned_by_slope = 0;  ///< particles pinned by slope post-processing
-  std::size_t num_low_outliers = 0;     ///< points left out of the surface as low outliers
+  int iterations = 0;                    ///< simulation steps run
+  bool converged = false;                ///< stopped by the convergence threshold
+  double last_max_displacement_m = 0.0;  ///< largest particle move in the last step, m
+  int cloth_cols = 0, cloth_rows = 0;    ///< particles along x and y
+  std::size_t num_hole_particles = 0;    ///< particles with no point under them (filled)
+  std::size_t num_pinned_by_slope = 0;   ///< particles pinned by slope post-processing
+  std::size_t num_low_outliers = 0;      ///< points left out of the surface as low outliers
 };
 
 /// What SMRF reports beyond the labels.
@@ -83,8 +83,8 @@ struct SmrfStats {
 
 /// The split, whichever back-end made it. `labels` has one entry per input point.
 struct GroundFilterResult {
-  bool ok = false;       ///< false: nothing classified, see message
-  std::string message;   ///< why not ok, or the back-end's one-line description
+  bool ok = false;      ///< false: nothing classified, see message
+  std::string message;  ///< why not ok, or the back-end's one-line description
   GroundMethod method = GroundMethod::kSmrf;  ///< the back-end that ran
   std::vector<GroundLabel> labels;            ///< per input point
   std::vector<float> height_above_ground_m;   ///< per input point: z - the back-end's terrain
@@ -94,8 +94,8 @@ struct GroundFilterResult {
   std::size_t num_objects = 0;
   std::size_t num_invalid = 0;  ///< non-finite points (labelled kInvalid)
   Eigen::Vector3d origin_world = Eigen::Vector3d::Zero();  ///< shift used to compute near zero
-  CsfStats csf;    ///< filled when method is kCsf
-  SmrfStats smrf;  ///< filled when method is kSmrf
+  CsfStats csf;                                            ///< filled when method is kCsf
+  SmrfStats smrf;                                          ///< filled when method is kSmrf
 };
 
 /// Called as the back-end advances (cloth: per simulation step; SMRF: per opening).

@@ -57,8 +57,8 @@ struct SmrfOptions {
 /// The provisional DEM of steps 1-4, kept so that classification thresholds can be varied
 /// without redoing the morphology.
 struct SmrfSurface {
-  smrf::Raster dem;    ///< provisional DEM (paper ZIpro), every cell known, m
-  smrf::Raster slope;  ///< its slope (rise over run) per cell
+  smrf::Raster dem;                       ///< provisional DEM (paper ZIpro), every cell known, m
+  smrf::Raster slope;                     ///< its slope (rise over run) per cell
   std::size_t num_cells_with_points = 0;  ///< cells the minimum surface got from points
   std::size_t num_low_outlier_cells = 0;  ///< flagged by step 2
   std::size_t num_object_cells = 0;       ///< flagged by step 3 (not counting low outliers)
@@ -74,9 +74,9 @@ struct SmrfResult {
                                               ///< for invalid points)
   std::size_t num_ground = 0;
   std::size_t num_objects = 0;
-  std::size_t num_invalid = 0;  ///< non-finite points (labelled kInvalid)
-  int grid_cols = 0;            ///< cells along x
-  int grid_rows = 0;            ///< cells along y
+  std::size_t num_invalid = 0;            ///< non-finite points (labelled kInvalid)
+  int grid_cols = 0;                      ///< cells along x
+  int grid_rows = 0;                      ///< cells along y
   std::size_t num_empty_cells = 0;        ///< cells without a point (inpainted)
   std::size_t num_low_outlier_cells = 0;  ///< see SmrfSurface
   std::size_t num_object_cells = 0;       ///< see SmrfSurface

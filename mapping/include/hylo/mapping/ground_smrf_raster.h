@@ -21,12 +21,8 @@ struct Raster {
   std::vector<float> z;  ///< one value per cell, row-major (Index), NaN = unknown
 
   std::size_t Size() const { return static_cast<std::size_t>(cols) * rows; }
-  std::size_t Index(int col, int row) const {
-    return static_cast<std::size_t>(row) * cols + col;
-  }
-  bool Contains(int col, int row) const {
-    return col >= 0 && row >= 0 && col < cols && row < rows;
-  }
+  std::size_t Index(int col, int row) const { return static_cast<std::size_t>(row) * cols + col; }
+  bool Contains(int col, int row) const { return col >= 0 && row >= 0 && col < cols && row < rows; }
   /// The cell holding (x, y), clamped to the grid (points on the far edge of the bounding box
   /// fall just past the last cell).
   void CellOf(float x, float y, int* col, int* row) const;
@@ -43,13 +39,12 @@ class PairRaster {
   Eigen::Vector2d Sample(double x, double y) const;
 
  private:
-  Raster geometry_;                  ///< z left empty
+  Raster geometry_;                      ///< z left empty
   std::vector<Eigen::Vector2f> values_;  ///< per cell, row-major
 };
 
 /// An empty raster (z all NaN) of `cell_m` cells covering [min_xy, max_xy].
-Raster CoveringRaster(const Eigen::Vector2d& min_xy, const Eigen::Vector2d& max_xy,
-                      double cell_m);
+Raster CoveringRaster(const Eigen::Vector2d& min_xy, const Eigen::Vector2d& max_xy, double cell_m);
 
 /// Number of cells CoveringRaster would allocate (computed in double, so that a stray point
 /// kilometres away gives a huge number instead of an overflow).
