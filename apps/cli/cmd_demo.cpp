@@ -2,7 +2,8 @@
 // substation, into DIR/<timestamp>/ with a DIR/latest link:
 //   1. simulate sessions A and B (a day apart; B has changed parts of the site);
 //   2. SLAM on A with the IESKF -> the raw prior map (every registered scan);
-//   3. craft it (uniform sampling + MLS), extract the ground (CSF), build the costmap;
+//   3. craft it (uniform sampling + MLS), extract the ground (the configuration's ground
+//      method, SMRF by default), build the costmap;
 //   4. localize B in the crafted map from a rough guess, hybrid mode, with each back-end
 //      (each in its own process, backend_runs.h);
 //   5. evaluate (ATE/RPE against B's truth, c2c to the prior) and draw the figures;
@@ -136,12 +137,15 @@ void RunDemo(const DemoArgs& args) {
   steps.Start("SLAM on session A with the IESKF: the raw prior map");
   const evaluation::AteResult ate_a = SlamSessionA(p, config, &s.slam);
 
-  steps.Start("craft the map (uniform sampling + MLS), ground (CSF), traversability costmap");
+  steps.Start("craft the map (uniform sampling + MLS), ground (" +
+              std::string(terrain::ToString(config.ground.method)) +
+              "), traversability costmap");
   fs::create_directories(p.map_dir);
   s.craft = CraftFile(p.slam_dir + "/map_dense.pcd", p.crafted_map, terrain::CraftOptions());
   std::printf("  crafted: %zu -> %zu points\n", s.craft.input_points, s.craft.output_points);
-  s.ground = GroundFile(p.crafted_map, p.ground, p.objects, terrain::ClothFilterOptions());
-  std::printf("  ground %zu, objects %zu points\n", s.ground.ground_points, s.ground.object_points);
+  s.ground = GroundFile(p.crafted_map, p.ground, p.objects, config.ground);
+  std::printf("  ground (%s) %zu, objects %zu points\n", s.ground.method.c_str(),
+              s.ground.ground_points, s.ground.object_points);
   s.traversability =
       TraversabilityFiles(p.ground, p.objects, p.costmap_dir, terrain::TraversabilityOptions());
   std::printf("  costmap %d x %d cells: %zu free, %zu cost, %zu lethal, %zu unknown\n",

@@ -1,7 +1,8 @@
-// `hylo ground --in CLOUD --out-ground G --out-objects O`: cloth simulation ground filter
-// (Zhang et al. 2016) and a JSON summary.
+// `hylo ground --in CLOUD --out-ground G --out-objects O [--method csf|smrf]`: ground / object
+// split by the simple morphological filter (Pingel et al. 2013) or the cloth simulation
+// filter (Zhang et al. 2016), and a JSON summary naming the method and its options.
+#include <cmath>
 #include <cstdio>
-#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -10,35 +11,23 @@
 #include "commands.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/progress.h"
-#include "hylo/terrain/cloth_filter.h"
+#include "hylo/terrain/ground_filter.h"
 
 namespace hylo::cli {
 namespace {
 
 struct GroundArgs {
   std::string in_path, ground_path, objects_path, json_path;
-  terrain::ClothFilterOptions options;
+  terrain::GroundFilterOptions options;
+  std::string method = terrain::ToString(terrain::GroundFilterOptions().method);
   bool no_slope_smoothing = false;
   bool vertical_distance = false;
-  std::string hole_fill = "mean";  ///< --hole-fill, see HoleFillByName
+  std::string hole_fill = terrain::ToString(terrain::GroundFilterOptions().csf.hole_fill);
 };
 
-// CLI names of terrain::ClothHoleFill.
-const std::map<std::string, terrain::ClothHoleFill>& HoleFillByName() {
-  static const std::map<std::string, terrain::ClothHoleFill> names = {
-      {"mean", terrain::ClothHoleFill::kNeighbourMean},
-      {"nearest", terrain::ClothHoleFill::kNearest},
-      {"reference", terrain::ClothHoleFill::kReferenceScanline}};
-  return names;
-}
-
-io::Json SummaryJson(const GroundArgs& args, const terrain::ClothFilterResult& r, double seconds) {
-  const terrain::ClothFilterOptions& o = args.options;
-  io::Json j = io::Json::object();
-  j["in"] = args.in_path;
-  j["out_ground"] = args.ground_path;
-  j["out_objects"] = args.objects_path;
-  io::Json& opt = j["options"];
+io::Json CsfOptionsJson(const GroundArgs& args) {
+  const terrain::ClothFilterOptions& o = args.options.csf;
+  io::Json opt = io::Json::object();
   opt["cloth_resolution_m"] = o.cloth_resolution_m;
   opt["rigidness"] = o.rigidness;
   opt["time_step"] = o.time_step;
@@ -56,26 +45,66 @@ io::Json SummaryJson(const GroundArgs& args, const terrain::ClothFilterResult& r
   opt["low_outlier_min_support"] = o.low_outlier_min_support;
   opt["low_outlier_max_fraction"] = o.low_outlier_max_fraction;
   opt["gravity"] = o.gravity;
+  return opt;
+}
+
+io::Json SmrfOptionsJson(const terrain::SmrfOptions& o) {
+  io::Json opt = io::Json::object();
+  opt["cell_m"] = o.cell_m;
+  opt["slope"] = o.slope;
+  opt["max_window_m"] = o.max_window_m;
+  opt["elevation_threshold_m"] = o.elevation_threshold_m;
+  opt["elevation_scaler"] = o.elevation_scaler;
+  opt["low_outlier_slope"] = o.low_outlier_slope;
+  opt["low_outlier_window_m"] = o.low_outlier_window_m;
+  opt["max_cells"] = o.max_cells;
+  return opt;
+}
+
+// What the back-end reports beyond the point counts.
+io::Json StatsJson(const terrain::GroundFilterResult& r) {
+  io::Json s = io::Json::object();
+  if (r.method == terrain::GroundMethod::kCsf) {
+    s["cols"] = r.csf.cloth_cols;
+    s["rows"] = r.csf.cloth_rows;
+    s["iterations"] = r.csf.iterations;
+    s["converged"] = r.csf.converged;
+    s["last_max_displacement_m"] = r.csf.last_max_displacement_m;
+    s["hole_particles"] = r.csf.num_hole_particles;
+    s["pinned_by_slope"] = r.csf.num_pinned_by_slope;
+  } else {
+    s["cols"] = r.smrf.grid_cols;
+    s["rows"] = r.smrf.grid_rows;
+    s["empty_cells"] = r.smrf.num_empty_cells;
+    s["object_cells"] = r.smrf.num_object_cells;
+    s["low_outlier_cells"] = r.smrf.num_low_outlier_cells;
+  }
+  return s;
+}
+
+io::Json SummaryJson(const GroundArgs& args, const terrain::GroundFilterResult& r,
+                     double seconds) {
+  io::Json j = io::Json::object();
+  j["in"] = args.in_path;
+  j["out_ground"] = args.ground_path;
+  j["out_objects"] = args.objects_path;
+  j["method"] = terrain::ToString(r.method);
+  j["options"] = r.method == terrain::GroundMethod::kCsf ? CsfOptionsJson(args)
+                                                         : SmrfOptionsJson(args.options.smrf);
   io::Json& p = j["points"];
   p["ground"] = r.num_ground;
   p["objects"] = r.num_objects;
   p["non_finite"] = r.num_invalid;
-  p["low_outliers"] = r.num_low_outliers;
-  io::Json& c = j["cloth"];
-  c["cols"] = r.cloth_cols;
-  c["rows"] = r.cloth_rows;
-  c["iterations"] = r.iterations;
-  c["converged"] = r.converged;
-  c["last_max_displacement_m"] = r.last_max_displacement_m;
-  c["hole_particles"] = r.num_hole_particles;
-  c["pinned_by_slope"] = r.num_pinned_by_slope;
-  j["origin_world"] = io::Json::array({r.origin_world.x(), r.origin_world.y(), r.origin_world.z()});
+  if (r.method == terrain::GroundMethod::kCsf) p["low_outliers"] = r.csf.num_low_outliers;
+  j[r.method == terrain::GroundMethod::kCsf ? "cloth" : "grid"] = StatsJson(r);
+  j["origin_world"] =
+      io::Json::array({r.origin_world.x(), r.origin_world.y(), r.origin_world.z()});
   j["seconds"] = seconds;
   return j;
 }
 
 // The points of `cloud` labelled `label`, with their attributes.
-io::CloudFile Select(const io::CloudFile& cloud, const terrain::ClothFilterResult& r,
+io::CloudFile Select(const io::CloudFile& cloud, const terrain::GroundFilterResult& r,
                      terrain::GroundLabel label) {
   io::CloudFile out;
   for (std::size_t i = 0; i < cloud.positions.size(); ++i) {
@@ -88,23 +117,34 @@ io::CloudFile Select(const io::CloudFile& cloud, const terrain::ClothFilterResul
   return out;
 }
 
+// Steps the progress line counts: cloth simulation steps, or SMRF's openings.
+std::unique_ptr<io::Progress> MakeProgress(const terrain::GroundFilterOptions& o) {
+  if (o.method == terrain::GroundMethod::kCsf) {
+    return std::make_unique<io::Progress>("cloth simulation",
+                                          static_cast<std::size_t>(o.csf.max_iterations));
+  }
+  const double openings = std::ceil(o.smrf.max_window_m / o.smrf.cell_m - 1e-9);
+  return std::make_unique<io::Progress>("SMRF openings", static_cast<std::size_t>(openings));
+}
+
 void RunGround(GroundArgs& args) {
-  args.options.slope_smoothing = !args.no_slope_smoothing;
-  args.options.class_distance_along_normal = !args.vertical_distance;
-  args.options.hole_fill = HoleFillByName().at(args.hole_fill);  // CLI checked the name
+  terrain::GroundFilterOptions& o = args.options;
+  terrain::ParseGroundMethod(args.method, &o.method);  // CLI checked the name
+  o.csf.slope_smoothing = !args.no_slope_smoothing;
+  o.csf.class_distance_along_normal = !args.vertical_distance;
+  terrain::ParseClothHoleFill(args.hole_fill, &o.csf.hole_fill);  // CLI checked the name
   std::string why;
-  if (!args.options.IsValid(&why)) throw std::invalid_argument(why);
+  if (!o.IsValid(&why)) throw std::invalid_argument(why);
   std::fprintf(stderr, "reading %s\n", args.in_path.c_str());
   const io::CloudFile cloud = io::ReadCloud(args.in_path);
-  auto progress = std::make_unique<io::Progress>(
-      "cloth simulation", static_cast<std::size_t>(args.options.max_iterations));
-  const terrain::ClothFilterResult result = terrain::FilterGround(
-      cloud.positions, args.options,
-      [&progress](int iteration, int) { progress->Update(static_cast<std::size_t>(iteration)); });
+  std::unique_ptr<io::Progress> progress = MakeProgress(o);
+  const terrain::GroundFilterResult result = terrain::ExtractGround(
+      cloud.positions, o,
+      [&progress](int step, int) { progress->Update(static_cast<std::size_t>(step)); });
   const double seconds = progress->ElapsedSeconds();
   progress.reset();
   if (!result.ok) throw std::runtime_error(args.in_path + ": " + result.message);
-  std::fprintf(stderr, "%s\n", result.message.c_str());
+  std::fprintf(stderr, "%s: %s\n", terrain::ToString(result.method), result.message.c_str());
   io::WriteCloud(args.ground_path, Select(cloud, result, terrain::GroundLabel::kGround));
   io::WriteCloud(args.objects_path, Select(cloud, result, terrain::GroundLabel::kObject));
   std::fprintf(stderr, "wrote %s and %s\n", args.ground_path.c_str(), args.objects_path.c_str());
@@ -113,57 +153,102 @@ void RunGround(GroundArgs& args) {
   MaybeWriteJson(args.json_path, summary);
 }
 
-}  // namespace
-
-void AddGroundCommand(CLI::App& root) {
-  auto* cmd = root.add_subcommand(
-      "ground", "Split a cloud into ground and objects with a cloth simulation filter (CSF)");
-  static GroundArgs args;
-  terrain::ClothFilterOptions& o = args.options;
-  cmd->add_option("--in", args.in_path, "cloud (PCD/PLY), may be in UTM coordinates")->required();
-  cmd->add_option("--out-ground", args.ground_path, "ground points to write")->required();
-  cmd->add_option("--out-objects", args.objects_path, "object points to write")->required();
+void AddCsfOptions(CLI::App* cmd, GroundArgs& args) {
+  const char* group = "Cloth simulation (--method csf)";
+  terrain::ClothFilterOptions& o = args.options.csf;
   cmd->add_option("--resolution", o.cloth_resolution_m, "cloth grid resolution (GR), m")
-      ->capture_default_str();
-  cmd->add_option("--rigidness", o.rigidness, "cloth rigidness (RI): 1 steep .. 3 flat")
-      ->capture_default_str();
-  cmd->add_option("--time-step", o.time_step, "simulation time step (dT)")->capture_default_str();
+      ->capture_default_str()->group(group);
+  cmd->add_option("--rigidness", o.rigidness,
+                  "cloth rigidness (RI): the paper's 1 steep .. 3 flat; stiffer up to 10")
+      ->capture_default_str()->group(group);
+  cmd->add_option("--time-step", o.time_step, "simulation time step (dT)")
+      ->capture_default_str()->group(group);
   cmd->add_option("--iterations", o.max_iterations, "maximum simulation steps")
-      ->capture_default_str();
+      ->capture_default_str()->group(group);
   cmd->add_option("--threshold", o.class_threshold_m, "ground if closer to the cloth, m (hcc)")
-      ->capture_default_str();
+      ->capture_default_str()->group(group);
   cmd->add_flag("--vertical-distance", args.vertical_distance,
                 "classify by the vertical gap to the cloth (the original CSF code) instead of "
-                "the distance to the cloth surface");
+                "the distance to the cloth surface")->group(group);
   cmd->add_flag("--no-slope-smoothing", args.no_slope_smoothing,
-                "skip the steep-slope post-processing (ST)");
+                "skip the steep-slope post-processing (ST)")->group(group);
   cmd->add_option("--slope-threshold", o.slope_height_threshold_m,
                   "post-processing height continuity threshold, m")
-      ->capture_default_str();
+      ->capture_default_str()->group(group);
   cmd->add_option("--slope-max-gap", o.slope_max_cloth_gap_m,
                   "post-processing pins particles only where the cloth is closer than this to "
                   "the surface (inf = no test, as the original CSF code), m")
-      ->capture_default_str();
+      ->capture_default_str()->group(group);
   cmd->add_option("--low-outlier-depth", o.low_outlier_depth_m,
                   "points this far below nearly all neighbours do not hold the cloth up, m "
                   "(0 = off)")
-      ->capture_default_str();
+      ->capture_default_str()->group(group);
   cmd->add_option("--low-outlier-fraction", o.low_outlier_max_fraction,
                   "a point is also a low outlier when fewer than this fraction of the points "
                   "around it reach its level (0 = by count only)")
-      ->capture_default_str();
+      ->capture_default_str()->group(group);
   std::vector<std::string> fill_names;
-  for (const auto& [name, fill] : HoleFillByName()) fill_names.push_back(name);
+  for (const terrain::ClothHoleFill fill :
+       {terrain::ClothHoleFill::kNeighbourMean, terrain::ClothHoleFill::kNearest,
+        terrain::ClothHoleFill::kReferenceScanline}) {
+    fill_names.push_back(terrain::ToString(fill));
+  }
   cmd->add_option("--hole-fill", args.hole_fill,
                   "height under particles without a point: mean (of known neighbours), nearest "
                   "(nearest measured particle, the paper's nearest point; suits a cloth finer "
                   "than the point spacing), reference (along rows/columns as the original CSF "
                   "code)")
       ->check(CLI::IsMember(fill_names))
-      ->capture_default_str();
+      ->capture_default_str()->group(group);
   cmd->add_option("--gravity", o.gravity,
                   "cloth gravity per step^2 (the original code's build used 0.2 dT^2)")
+      ->capture_default_str()->group(group);
+}
+
+void AddSmrfOptions(CLI::App* cmd, terrain::SmrfOptions& o) {
+  const char* group = "Simple morphological filter (--method smrf)";
+  cmd->add_option("--smrf-cell", o.cell_m, "minimum-surface cell size (c), m")
+      ->capture_default_str()->group(group);
+  cmd->add_option("--smrf-slope", o.slope,
+                  "slope tolerance of the progressive opening (s), rise over run")
+      ->capture_default_str()->group(group);
+  cmd->add_option("--smrf-window", o.max_window_m,
+                  "radius of the largest opening (w), m: objects up to about twice this wide "
+                  "are removed")
+      ->capture_default_str()->group(group);
+  cmd->add_option("--smrf-threshold", o.elevation_threshold_m,
+                  "ground if within this of the provisional DEM on flat terrain (et), m")
+      ->capture_default_str()->group(group);
+  cmd->add_option("--smrf-scaler", o.elevation_scaler,
+                  "the threshold grows by this times the DEM's slope under the point (es)")
+      ->capture_default_str()->group(group);
+  cmd->add_option("--smrf-low-outlier-window", o.low_outlier_window_m,
+                  "window radius of the low-outlier test, m (0 = no test)")
+      ->capture_default_str()->group(group);
+  cmd->add_option("--smrf-low-outlier-slope", o.low_outlier_slope,
+                  "slope tolerance of the low-outlier test (the paper's 500 % = 5)")
+      ->capture_default_str()->group(group);
+}
+
+}  // namespace
+
+void AddGroundCommand(CLI::App& root) {
+  auto* cmd = root.add_subcommand(
+      "ground",
+      "Split a cloud into ground and objects: simple morphological filter (SMRF) or cloth "
+      "simulation filter (CSF)");
+  static GroundArgs args;
+  cmd->add_option("--in", args.in_path, "cloud (PCD/PLY), may be in UTM coordinates")->required();
+  cmd->add_option("--out-ground", args.ground_path, "ground points to write")->required();
+  cmd->add_option("--out-objects", args.objects_path, "object points to write")->required();
+  cmd->add_option("--method", args.method,
+                  "ground back-end: smrf (Pingel et al. 2013; the default, chosen by "
+                  "leave-one-out on the ISPRS samples) or csf (Zhang et al. 2016)")
+      ->check(CLI::IsMember({terrain::ToString(terrain::GroundMethod::kSmrf),
+                             terrain::ToString(terrain::GroundMethod::kCsf)}))
       ->capture_default_str();
+  AddSmrfOptions(cmd, args.options.smrf);
+  AddCsfOptions(cmd, args);
   cmd->add_option("--json", args.json_path, "write a JSON summary here");
   cmd->callback([] { RunGround(args); });
 }

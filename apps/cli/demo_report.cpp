@@ -72,7 +72,8 @@ std::string Intro(const DemoSummary& s) {
   return "The paper's pipeline on the project's simulated substation: session A (" +
          Fixed(s.sim.duration_a_s, 0) +
          " s) mapped by SLAM with the IESKF, the map crafted "
-         "(uniform sampling + MLS), its ground extracted (cloth simulation) and turned into a "
+         "(uniform sampling + MLS), its ground extracted (" + s.ground.method +
+         ") and turned into a "
          "traversability costmap; then session B (" +
          Fixed(s.sim.duration_b_s, 0) +
          " s, a day later, with changed parts of the site) localized in the crafted map from a "
@@ -97,9 +98,10 @@ std::vector<std::pair<std::string, std::string>> Parameters(const DemoSummary& s
           {"IMU", Fixed(s.sim.imu.rate_hz, 0) + " Hz"},
           {"initial guess error", Fixed(s.guess_error.translation_m, 2) + " m, " +
                                       Fixed(s.guess_error.yaw_deg, 1) + " deg yaw"},
-          {"hybrid mode (localization.update_after_s)", Fixed(s.hybrid_after_s, 1) + " s"},
+          {"hybrid mode (map.update_after_s)", Fixed(s.hybrid_after_s, 1) + " s"},
           {"craft", "defaults of terrain::CraftOptions"},
-          {"ground", "defaults of terrain::ClothFilterOptions"},
+          {"ground", s.ground.method + ", the configuration's ground section "
+                                       "(terrain::GroundFilterOptions::ForRobotMaps)"},
           {"costmap resolution", Fixed(s.traversability.resolution_m, 2) + " m"}};
 }
 

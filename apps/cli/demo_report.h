@@ -20,7 +20,7 @@ struct DemoPaths {
   std::string dir;
   std::string sim_dir, bag_a, bag_b, truth_a, truth_b;
   std::string slam_dir;                               ///< SLAM on A (RunLog outputs)
-  std::string map_dir, crafted_map, ground, objects;  ///< crafted prior map, CSF split
+  std::string map_dir, crafted_map, ground, objects;  ///< crafted prior map, ground split
   std::string costmap_dir, costmap_png;
   std::string localize_config, localize_dir;  ///< B, one sub-folder per back-end
   std::string plot_dir, summary, report;

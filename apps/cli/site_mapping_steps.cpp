@@ -55,27 +55,26 @@ CraftStep CraftFile(const std::string& in_path, const std::string& out_path,
 
 io::Json GroundStep::ToJson() const {
   io::Json j = io::Json::object();
+  j["method"] = method;
   j["ground_points"] = ground_points;
   j["object_points"] = object_points;
-  j["iterations"] = iterations;
-  j["converged"] = converged;
   j["seconds"] = seconds;
   return j;
 }
 
 GroundStep GroundFile(const std::string& in_path, const std::string& ground_path,
-                      const std::string& objects_path, const terrain::ClothFilterOptions& options) {
+                      const std::string& objects_path,
+                      const terrain::GroundFilterOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const io::CloudFile cloud = io::ReadCloud(in_path);
-  const terrain::ClothFilterResult r = terrain::FilterGround(cloud.positions, options);
+  const terrain::GroundFilterResult r = terrain::ExtractGround(cloud.positions, options);
   if (!r.ok) throw std::runtime_error(in_path + ": " + r.message);
   io::WriteCloud(ground_path, Select(cloud, r.labels, terrain::GroundLabel::kGround));
   io::WriteCloud(objects_path, Select(cloud, r.labels, terrain::GroundLabel::kObject));
   GroundStep step;
+  step.method = terrain::ToString(r.method);
   step.ground_points = r.num_ground;
   step.object_points = r.num_objects;
-  step.iterations = r.iterations;
-  step.converged = r.converged;
   step.seconds = SecondsSince(start);
   return step;
 }

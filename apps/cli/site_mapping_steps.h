@@ -1,6 +1,6 @@
 #pragma once
 // The offline mapping chain as file-to-file steps (Alamanos et al., Sec. IV): craft a raw
-// map (uniform sampling + MLS), split ground from objects (cloth simulation), build the
+// map (uniform sampling + MLS), split ground from objects (SMRF or cloth simulation), build the
 // traversability grid map and costmap. Used by `hylo demo`; `hylo craft`, `hylo ground` and
 // `hylo traversability` do the same work with every option exposed.
 // Each step throws std::runtime_error naming the file and the reason when it cannot go on.
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "hylo/io/json.h"
-#include "hylo/terrain/cloth_filter.h"
+#include "hylo/terrain/ground_filter.h"
 #include "hylo/terrain/craft.h"
 #include "hylo/terrain/traversability.h"
 
@@ -27,15 +27,15 @@ CraftStep CraftFile(const std::string& in_path, const std::string& out_path,
                     const terrain::CraftOptions& options);
 
 struct GroundStep {
+  std::string method;  ///< the ground back-end that ran (smrf | csf)
   std::size_t ground_points = 0, object_points = 0;
-  int iterations = 0;  ///< cloth simulation steps
-  bool converged = false;
   double seconds = 0.0;  ///< wall time, s
   io::Json ToJson() const;
 };
 /// `in_path` -> ground and object clouds (every attribute of the input kept).
 GroundStep GroundFile(const std::string& in_path, const std::string& ground_path,
-                      const std::string& objects_path, const terrain::ClothFilterOptions& options);
+                      const std::string& objects_path,
+                      const terrain::GroundFilterOptions& options);
 
 struct TraversabilityStep {
   std::array<std::size_t, terrain::kNumCellClasses> cells{};  ///< per terrain::CellClass

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "hylo/common/local_origin.h"
+#include "hylo/common/option_checks.h"
 #include "hylo/terrain/cloth_filter_cloth.h"
 #include "hylo/terrain/cloth_filter_slope.h"
 #include "hylo/terrain/cloth_filter_surface.h"
@@ -22,12 +23,7 @@ constexpr double kStartClearanceM = 0.05;
 
 template <typename T>
 bool Fail(std::string* why, const char* field, T value, const char* constraint) {
-  if (why != nullptr) {
-    std::ostringstream os;
-    os << "ClothFilterOptions." << field << " = " << value << ": must be " << constraint;
-    *why = os.str();
-  }
-  return false;
+  return FailOption(field, value, std::string("must be ") + constraint, why);
 }
 
 PointCloud InvertFinite(const PointCloud& points) {

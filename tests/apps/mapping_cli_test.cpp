@@ -59,8 +59,11 @@ class MappingCliTest : public ::testing::Test {
   static void TearDownTestSuite() { delete dir_; }
   static std::string Path(const std::string& name) { return *dir_ + "/" + name; }
 
-  // Runs `hylo ground` on the site with `extra` options; expects success and a clean split.
-  static void ExpectBuildingSplitOff(const std::string& extra, const std::string& tag) {
+  // Runs `hylo ground` on the site with `extra` options; expects success and a clean split:
+  // no ground point higher above the field than `max_ground_m` (the back-end's threshold on
+  // this 2 % field, plus noise).
+  static void ExpectBuildingSplitOff(const std::string& extra, const std::string& tag,
+                                     double max_ground_m) {
     const std::string ground = Path(tag + "_ground.pcd"), objects = Path(tag + "_objects.pcd");
     ASSERT_EQ(RunHylo("ground --in " + Path("site.pcd") + " --out-ground " + ground +
                           " --out-objects " + objects + " --json " + Path(tag + ".json") + " " +
@@ -72,12 +75,11 @@ class MappingCliTest : public ::testing::Test {
     const io::Json json = io::ReadJsonFile(Path(tag + ".json"));
     EXPECT_EQ(io::NumberAt(json, "points.ground"), double(g.positions.size()));
     EXPECT_EQ(io::NumberAt(json, "points.objects"), double(o.positions.size()));
-    // No ground point higher above the field than the class threshold (0.5 m): no roof, no
-    // wall above its foot; and nearly every field point is ground.
+    // No roof, no wall above its foot; and nearly every field point is ground.
     std::size_t high_in_ground = 0, field_in_ground = 0, field_points = 0;
     for (const Eigen::Vector3d& p : g.positions) {
       const double above_field_m = p.z() - FieldHeight(p.x());
-      high_in_ground += above_field_m > 0.55;
+      high_in_ground += above_field_m > max_ground_m;
       field_in_ground += above_field_m < 0.1;
     }
     for (const Eigen::Vector3d& p : SyntheticSite().positions) {
@@ -92,14 +94,28 @@ class MappingCliTest : public ::testing::Test {
 };
 std::string* MappingCliTest::dir_ = nullptr;
 
-TEST_F(MappingCliTest, GroundSplitsTheBuildingOffWithEitherHoleFill) {
-  ExpectBuildingSplitOff("", "defaults");
-  ExpectBuildingSplitOff("--resolution 0.5 --rigidness 6 --hole-fill nearest", "fine");
-  EXPECT_EQ(io::ReadJsonFile(Path("fine.json")).at("options").at("hole_fill"), "nearest");
+// SMRF by default, the cloth filter on request (0.5 m from the cloth), and its other hole
+// fill; the summary names the method and its options. SMRF's DEM stands on the lowest return
+// of each cell, and along this building's edge that is the wall's first return, 0.25 m up:
+// wall returns up to 0.25 m + the elevation threshold (0.7 m by default, 0.15 m for robot
+// maps) + 1.25 x the DEM's slope at that step (up to 0.16 m) are ground, the rest of the
+// 4 m building is not.
+TEST_F(MappingCliTest, GroundSplitsTheBuildingOffWithEitherBackEnd) {
+  ExpectBuildingSplitOff("", "defaults", 1.2);
+  const std::string defaults = ReadText(Path("defaults.json"));
+  EXPECT_NE(defaults.find("\"method\": \"smrf\""), std::string::npos) << defaults;
+  EXPECT_NE(defaults.find("\"max_window_m\": 24"), std::string::npos) << defaults;
+  ExpectBuildingSplitOff("--smrf-threshold 0.15", "robot_map", 0.6);
+  ExpectBuildingSplitOff("--method csf", "csf", 0.55);
+  ExpectBuildingSplitOff("--method csf --resolution 1 --rigidness 3 --hole-fill mean", "paper",
+                         0.55);
+  const std::string paper = ReadText(Path("paper.json"));
+  EXPECT_NE(paper.find("\"method\": \"csf\""), std::string::npos) << paper;
+  EXPECT_NE(paper.find("\"hole_fill\": \"mean\""), std::string::npos) << paper;
 }
 
 TEST_F(MappingCliTest, CraftThenTraversabilityWriteTheirFiles) {
-  ExpectBuildingSplitOff("", "chain");
+  ExpectBuildingSplitOff("", "chain", 1.2);
   ASSERT_EQ(RunHylo("craft --in " + Path("chain_ground.pcd") + " --out " +
                         Path("chain_clean.ply") + " --voxel 0.2 --radius 0.6 --json " +
                         Path("craft.json"),
@@ -138,10 +154,20 @@ TEST_F(MappingCliTest, BadInputIsRefusedWithTheReason) {
   EXPECT_FALSE(std::filesystem::exists(Path("x.pcd")));
 
   EXPECT_NE(RunHylo("ground --in " + Path("site.pcd") + " --out-ground " + Path("x.pcd") +
-                        " --out-objects " + Path("y.pcd") + " --rigidness 0",
+                        " --out-objects " + Path("y.pcd") + " --method csf --rigidness 0",
                     log),
             0);
   EXPECT_NE(ReadText(log).find("rigidness"), std::string::npos) << ReadText(log);
+  EXPECT_NE(RunHylo("ground --in " + Path("site.pcd") + " --out-ground " + Path("x.pcd") +
+                        " --out-objects " + Path("y.pcd") + " --smrf-cell 0",
+                    log),
+            0);
+  EXPECT_NE(ReadText(log).find("cell_m"), std::string::npos) << ReadText(log);
+  EXPECT_NE(RunHylo("ground --in " + Path("site.pcd") + " --out-ground " + Path("x.pcd") +
+                        " --out-objects " + Path("y.pcd") + " --method pmf",
+                    log),
+            0);
+  EXPECT_NE(ReadText(log).find("method"), std::string::npos) << ReadText(log);
 
   const std::string missing = Path("no_such_cloud.pcd");
   for (const std::string& command :

@@ -215,9 +215,31 @@ TEST(RunConfig, OdometrySectionsRejectUnknownKeysAndBadValues) {
   ExpectConfigError("preprocess: {point_stride: 0}\n", {"preprocess.point_stride", ">= 1"});
 }
 
-TEST(RunConfig, ImuNoneSelectsTheNoImuPipeline) {
-  const RunConfig config = ParseRunConfig("imu: none\n", "test.yaml");
-  EXPECT_FALSE(config.PipelineOptions().imu.enabled);
+// The ground section: the robot-map preset by default, the method and each back-end's
+// options read, validated and written back.
+TEST(RunConfig, GroundSectionParsesValidatesAndRoundTrips) {
+  const RunConfig defaults = ParseRunConfig("", "empty.yaml");
+  EXPECT_EQ(defaults.ground.method, terrain::GroundMethod::kSmrf);
+  EXPECT_DOUBLE_EQ(defaults.ground.smrf.elevation_threshold_m,
+                   terrain::GroundFilterOptions::ForRobotMaps().smrf.elevation_threshold_m);
+  const RunConfig config = ParseRunConfig(
+      "ground:\n  method: csf\n  csf: {rigidness: 2, hole_fill: reference}\n"
+      "  smrf: {cell_m: 0.5, max_window_m: 12}\n",
+      "test.yaml");
+  EXPECT_EQ(config.ground.method, terrain::GroundMethod::kCsf);
+  EXPECT_EQ(config.ground.csf.rigidness, 2);
+  EXPECT_EQ(config.ground.csf.hole_fill, terrain::ClothHoleFill::kReferenceScanline);
+  const RunConfig back = ParseRunConfig(ToYaml(config), "saved.yaml");
+  EXPECT_EQ(back.ground.method, terrain::GroundMethod::kCsf);
+  EXPECT_EQ(back.ground.csf.hole_fill, terrain::ClothHoleFill::kReferenceScanline);
+  EXPECT_DOUBLE_EQ(back.ground.smrf.cell_m, 0.5);
+  EXPECT_DOUBLE_EQ(back.ground.smrf.max_window_m, 12.0);
+  ExpectConfigError("ground: {method: pmf}\n", {"ground.method", "smrf or csf"});
+  ExpectConfigError("ground: {smrf: {cell: 1}}\n", {"ground.smrf.cell", "unknown key"});
+  ExpectConfigError("ground: {smrf: {cell_m: -1}}\n", {"ground.smrf.cell_m = -1"});
+  // The back-end not chosen is checked too: a file is valid whichever method it picks.
+  ExpectConfigError("ground: {method: smrf, csf: {rigidness: 0}}\n", {"ground.csf.rigidness"});
+  ExpectConfigError("ground: {csf: {hole_fill: sideways}}\n", {"ground.csf.hole_fill"});
 }
 
 }  // namespace

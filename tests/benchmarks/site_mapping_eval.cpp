@@ -8,6 +8,8 @@
 //                          [--only-craft | --only-slope] [--mls-radius M] [--order N]
 //                          [--small-radius M] [--support-voxel M]  (CraftOptions: small radius
 //                          0 = single scale; support voxel >= sampling voxel = sampled points only)
+//                          [--ground-method smrf|csf]  (smrf: the demo's, ForRobotMaps; csf:
+//                          the cloth filter with the paper's defaults, the chain's before)
 // Full: the simulator's default session A (180 s, 0.2 deg columns), every scan. --quick: the
 // simulator's coarse settings (SimulationOptions::Fast: 1 deg columns, 0.4 m terrain) for 20 s.
 
@@ -105,12 +107,12 @@ Json FiguresJson(const SiteEvalOptions& o, const SiteFigures& f) {
   gj["type_ii"] = g.TypeII();
   gj["total_error"] = g.Total();
   gj["kappa"] = g.Kappa();
-  gj["iterations"] = g.iterations;
+  gj["method"] = g.method;
   gj["seconds"] = g.seconds;
   Json& t = j["traversability"];
   t["resolution_m"] = o.traversability.resolution_m;
   t["max_slope_deg"] = o.traversability.cost.max_slope_deg;
-  t["from_cloth_filter_ground"] = SlopeJson(f.slope_csf);
+  t["from_ground_filter"] = SlopeJson(f.slope_filter);
   t["from_true_ground"] = SlopeJson(f.slope_truth);
   t["from_true_ground_edge_cells_estimated"] = SlopeJson(f.slope_truth_all_cells);
   return j;
@@ -156,16 +158,16 @@ void PrintFigures(const SiteEvalOptions& o, const SiteFigures& f) {
   std::printf("  time on %zu points: 1 thread %.2f s, 2 threads %.2f s (shared machine)\n",
               f.craft.timing_points, f.craft.seconds_1_thread, f.craft.seconds_2_threads);
   const GroundFigures& g = f.ground;
-  std::printf("\n2. ground (cloth filter, %zu points, one per %.2f m voxel, hit-surface truth)\n",
-              f.ground_filter_points, o.ground_voxel_m);
-  std::printf("  type I %.2f%%  type II %.2f%%  total %.2f%%  kappa %.2f%%  (%d iterations, %.1f s)\n",
-              100 * g.TypeI(), 100 * g.TypeII(), 100 * g.Total(), 100 * g.Kappa(), g.iterations,
+  std::printf("\n2. ground (%s, %zu points, one per %.2f m voxel, hit-surface truth)\n",
+              g.method.c_str(), f.ground_filter_points, o.ground_voxel_m);
+  std::printf("  type I %.2f%%  type II %.2f%%  total %.2f%%  kappa %.2f%%  (%.1f s)\n",
+              100 * g.TypeI(), 100 * g.TypeII(), 100 * g.Total(), 100 * g.Kappa(),
               g.seconds);
   std::printf("\n3. traversability (%.2f m cells, limit %.1f deg) vs site_slope.txt\n",
               o.traversability.resolution_m, o.traversability.cost.max_slope_deg);
   std::printf("  %-26s %8s %8s %8s %8s %8s %8s %9s %8s\n", "ground from", "measured",
               "compared", "coverage", "rmse_deg", "bias_deg", "steep", "marked", "steep_unk");
-  PrintSlope("cloth filter (the chain)", f.slope_csf);
+  PrintSlope("ground filter (the chain)", f.slope_filter);
   PrintSlope("true labels", f.slope_truth);
   PrintSlope("true labels, edges estimated", f.slope_truth_all_cells);
   std::printf("  (compared: cells with ground points and a slope; coverage = compared / measured;\n"
@@ -182,6 +184,7 @@ bool ParseArgs(int argc, char** argv, SiteEvalOptions* o, std::string* json_path
   int stride = 0, order = -1;
   std::string only;
   std::string lidar;
+  std::string ground_method;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool has_value = i + 1 < argc;
@@ -200,6 +203,7 @@ bool ParseArgs(int argc, char** argv, SiteEvalOptions* o, std::string* json_path
     else if (a == "--order" && has_value) order = std::atoi(argv[++i]);
     else if (a == "--small-radius" && has_value) small_radius_m = std::atof(argv[++i]);
     else if (a == "--support-voxel" && has_value) support_voxel_m = std::atof(argv[++i]);
+    else if (a == "--ground-method" && has_value) ground_method = argv[++i];
     else {
       std::fprintf(stderr, "unknown argument '%s'\n", a.c_str());
       return false;
@@ -219,6 +223,13 @@ bool ParseArgs(int argc, char** argv, SiteEvalOptions* o, std::string* json_path
   if (support_voxel_m >= 0) o->craft.mls_support_voxel_m = support_voxel_m;
   o->measure_craft = only != "slope";
   o->measure_ground_and_slope = only != "craft";
+  if (!ground_method.empty() &&
+      !hylo::terrain::ParseGroundMethod(ground_method, &o->ground.method)) {
+    std::fprintf(stderr, "unknown ground method '%s' (smrf or csf)\n", ground_method.c_str());
+    return false;
+  }
+  // The cloth filter as the chain ran it before SMRF: the paper's defaults.
+  if (o->ground.method == hylo::terrain::GroundMethod::kCsf) o->ground.csf = {};
   if (!lidar.empty() && !hylo::sim::ParseLidarModel(lidar, &o->sim.lidar.model)) {
     std::fprintf(stderr, "unknown lidar '%s'\n", lidar.c_str());
     return false;

@@ -214,8 +214,8 @@ bool SiteEvalOptions::IsValid(std::string* why) const {
     os << "craft: " << sub;
   else if (!(ground_voxel_m >= 0.0))
     os << "ground_voxel_m = " << ground_voxel_m << " must be >= 0";
-  else if (!cloth.IsValid(&sub))
-    os << "cloth: " << sub;
+  else if (!ground.IsValid(&sub))
+    os << "ground: " << sub;
   else if (!traversability.IsValid(&sub))
     os << "traversability: " << sub;
   else if (out_dir.empty())
@@ -355,17 +355,17 @@ SiteFigures EvaluateSite(const SiteEvalOptions& options) {
   for (std::size_t i : kept) points.push_back(figures.map.points_map[i]);
   figures.ground_filter_points = points.size();
   const auto start = Clock::now();
-  const terrain::ClothFilterResult csf = terrain::FilterGround(points, options.cloth);
+  const terrain::GroundFilterResult split = terrain::ExtractGround(points, options.ground);
   figures.ground.seconds = SecondsSince(start);
-  figures.ground.iterations = csf.iterations;
-  std::vector<Eigen::Vector3d> csf_ground, csf_objects, true_ground, true_objects;
+  figures.ground.method = terrain::ToString(split.method);
+  std::vector<Eigen::Vector3d> filter_ground, filter_objects, true_ground, true_objects;
   GroundFigures& g = figures.ground;
   for (std::size_t k = 0; k < kept.size(); ++k) {
     const bool truth_ground = figures.map.is_ground[kept[k]] != 0;
-    const bool said_ground = csf.ok && csf.labels[k] == terrain::GroundLabel::kGround;
+    const bool said_ground = split.ok && split.labels[k] == terrain::GroundLabel::kGround;
     ++(truth_ground ? (said_ground ? g.ground_as_ground : g.ground_as_object)
                     : (said_ground ? g.object_as_ground : g.object_as_object));
-    (said_ground ? csf_ground : csf_objects).push_back(points[k]);
+    (said_ground ? filter_ground : filter_objects).push_back(points[k]);
     (truth_ground ? true_ground : true_objects).push_back(points[k]);
   }
 
@@ -375,8 +375,8 @@ SiteFigures EvaluateSite(const SiteEvalOptions& options) {
   const evaluation::TruthField truth = ReadSimSlopeGrid(slope_path);
   const evaluation::TruthField footprint =
       FootprintSlope(site, options.traversability.surface.normal_radius_m);
-  figures.slope_csf =
-      MeasureSlope(options, truth, footprint, csf_ground, csf_objects, "cloth_filter");
+  figures.slope_filter = MeasureSlope(options, truth, footprint, filter_ground, filter_objects,
+                                      "ground_filter");
   figures.slope_truth =
       MeasureSlope(options, truth, footprint, true_ground, true_objects, "true_labels");
   figures.slope_truth_all_cells = MeasureSlope(options, truth, footprint, true_ground,

@@ -4,7 +4,8 @@
 //   1. session A's scans registered with the TRUE poses (each point at its own time), so the
 //      map's thickness is sensor noise only; crafting (uniform sampling + MLS) measured by the
 //      RMS distance to the simulator's exact surfaces, and timed on a 1M-point map;
-//   2. the cloth simulation filter against the hit surface of each return (ground / object);
+//   2. the ground filter (the demo's: GroundFilterOptions::ForRobotMaps, or the back-end
+//      chosen) against the hit surface of each return (ground / object);
 //   3. traversability slope against the simulator's true slope grid (site_slope.txt).
 
 #include <Eigen/Core>
@@ -15,8 +16,8 @@
 
 #include "hylo/evaluation/traversability_eval.h"
 #include "hylo/sim/simulator.h"
-#include "hylo/terrain/cloth_filter.h"
 #include "hylo/terrain/craft.h"
+#include "hylo/terrain/ground_filter.h"
 #include "hylo/terrain/traversability.h"
 
 namespace hylo::site_eval {
@@ -29,7 +30,8 @@ struct SiteEvalOptions {
   terrain::CraftOptions craft;                ///< `hylo craft` defaults
   std::size_t timing_points = 1'000'000;  ///< map size for the 1- vs 2-thread timing (0 = skip)
   double ground_voxel_m = 0.1;       ///< one return per voxel before the ground filter, m
-  terrain::ClothFilterOptions cloth;              ///< `hylo ground` defaults (the paper's)
+  terrain::GroundFilterOptions ground =  ///< the demo's (a run configuration's default)
+      terrain::GroundFilterOptions::ForRobotMaps();
   terrain::TraversabilityOptions traversability;  ///< `hylo traversability` defaults
   std::string out_dir;               ///< site_slope.txt (and nothing else) is written here
   bool measure_craft = true;         ///< part 1 (crafting); false leaves CraftFigures empty
@@ -83,7 +85,7 @@ struct GroundFigures {
   std::size_t ground_as_ground = 0, ground_as_object = 0;
   std::size_t object_as_ground = 0, object_as_object = 0;
   double seconds = 0.0;  ///< wall time of the filter, s
-  int iterations = 0;
+  std::string method;  ///< the ground back-end that ran
   double TypeI() const;   ///< ground rejected / ground
   double TypeII() const;  ///< objects accepted as ground / objects
   double Total() const;   ///< misclassified / all
@@ -115,7 +117,7 @@ struct SiteFigures {
   CraftFigures craft;
   GroundFigures ground;
   std::size_t ground_filter_points = 0;
-  SlopeFigures slope_csf;    ///< traversability from the cloth filter's ground (the chain)
+  SlopeFigures slope_filter;  ///< traversability from the ground filter's ground (the chain)
   SlopeFigures slope_truth;  ///< from the truly ground returns (isolates the grid's error)
   /// As slope_truth with SurfaceOptions::unknown_at_data_edge off: every cell estimated, so
   /// the price of the cells left unknown at data edges is on the table.

@@ -12,6 +12,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "benchmarks/isprs_eval.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/terrain/cloth_filter.h"
 #include "test_data.h"
@@ -38,56 +39,16 @@ constexpr double kIsprsMeanTotalBoundRuggedPercent = 5.9;
 // runs (its hole filling and its dT^2-twice gravity). Target 98 %; measured 99.65 %.
 constexpr double kCsfSampleMinAgreement = 0.99;
 
-// Exact-coordinate key: the ISPRS ground files are an exact subset of the full samples, and the
-// CSF reference lists coordinates with 6 decimals (rounded to 1 mm here).
-struct PointKey {
-  int64_t x, y, z;
-  bool operator==(const PointKey& o) const { return x == o.x && y == o.y && z == o.z; }
-};
-struct PointKeyHash {
-  std::size_t operator()(const PointKey& k) const {
-    return std::hash<int64_t>()(k.x * 73856093 ^ k.y * 19349663 ^ k.z * 83492791);
-  }
-};
-PointKey KeyOf(const Eigen::Vector3d& p) {
-  return {std::llround(p.x() * 1000), std::llround(p.y() * 1000), std::llround(p.z() * 1000)};
-}
-
-/// Confusion counts with ground as the positive class (ISPRS filter test definitions).
-struct Confusion {
-  double ground_as_ground = 0, ground_as_object = 0, object_as_ground = 0, object_as_object = 0;
-  double TypeI() const { return ground_as_object / (ground_as_ground + ground_as_object); }
-  double TypeII() const { return object_as_ground / (object_as_ground + object_as_object); }
-  double Total() const { return (ground_as_object + object_as_ground) / N(); }
-  double N() const {
-    return ground_as_ground + ground_as_object + object_as_ground + object_as_object;
-  }
-  double Kappa() const {
-    const double observed = (ground_as_ground + object_as_object) / N();
-    const double truth_ground = ground_as_ground + ground_as_object;
-    const double said_ground = ground_as_ground + object_as_ground;
-    const double chance =
-        (truth_ground * said_ground + (N() - truth_ground) * (N() - said_ground)) / (N() * N());
-    return (observed - chance) / (1.0 - chance);
-  }
-};
+using isprs::Confusion;
+using isprs::KeyOf;
+using isprs::PointKey;
+using isprs::PointKeyHash;
 
 Confusion EvaluateIsprsSample(const std::string& name, const ClothFilterOptions& options) {
-  const io::CloudFile all = io::ReadCloud(testing::DataPath("isprs/" + name + "-utm.pcd"));
-  const io::CloudFile ground =
-      io::ReadCloud(testing::DataPath("isprs/" + name + "-utm-ground.pcd"));
-  std::unordered_set<PointKey, PointKeyHash> ground_keys;
-  for (const Eigen::Vector3d& p : ground.positions) ground_keys.insert(KeyOf(p));
-  const ClothFilterResult result = FilterGround(all.positions, options);
+  const isprs::Sample sample = isprs::LoadSample(name);
+  const ClothFilterResult result = FilterGround(sample.points, options);
   EXPECT_TRUE(result.ok) << name << ": " << result.message;
-  Confusion confusion;
-  for (std::size_t i = 0; i < all.positions.size(); ++i) {
-    const bool truth = ground_keys.count(KeyOf(all.positions[i])) > 0;
-    const bool said = result.labels[i] == GroundLabel::kGround;
-    (truth ? (said ? confusion.ground_as_ground : confusion.ground_as_object)
-           : (said ? confusion.object_as_ground : confusion.object_as_object)) += 1;
-  }
-  return confusion;
+  return isprs::Score(sample, result.labels);
 }
 
 struct IsprsSample {

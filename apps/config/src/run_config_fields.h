@@ -194,6 +194,47 @@ void VisitFields(V& v, OutputSection& output) {
 }
 
 template <class V>
+void VisitFields(V& v, terrain::ClothFilterOptions& o) {
+  v("cloth_resolution_m", o.cloth_resolution_m);
+  v("rigidness", o.rigidness);
+  v("time_step", o.time_step);
+  v("max_iterations", o.max_iterations);
+  v("class_threshold_m", o.class_threshold_m);
+  v("class_distance_along_normal", o.class_distance_along_normal);
+  v("slope_smoothing", o.slope_smoothing);
+  v("slope_height_threshold_m", o.slope_height_threshold_m);
+  v("slope_max_cloth_gap_m", o.slope_max_cloth_gap_m);
+  v("slope_min_region_particles", o.slope_min_region_particles);
+  v("convergence_threshold_m", o.convergence_threshold_m);
+  v("hole_fill", o.hole_fill);
+  v("low_outlier_depth_m", o.low_outlier_depth_m);
+  v("low_outlier_cell_m", o.low_outlier_cell_m);
+  v("low_outlier_min_support", o.low_outlier_min_support);
+  v("low_outlier_max_fraction", o.low_outlier_max_fraction);
+  v("gravity", o.gravity);
+  v("damping", o.damping);
+}
+
+template <class V>
+void VisitFields(V& v, terrain::SmrfOptions& o) {
+  v("cell_m", o.cell_m);
+  v("slope", o.slope);
+  v("max_window_m", o.max_window_m);
+  v("elevation_threshold_m", o.elevation_threshold_m);
+  v("elevation_scaler", o.elevation_scaler);
+  v("low_outlier_slope", o.low_outlier_slope);
+  v("low_outlier_window_m", o.low_outlier_window_m);
+  v("max_cells", o.max_cells);
+}
+
+template <class V>
+void VisitFields(V& v, terrain::GroundFilterOptions& o) {
+  v("method", o.method);
+  v.Section("csf", o.csf);
+  v.Section("smrf", o.smrf);
+}
+
+template <class V>
 void VisitFields(V& v, RunConfig& run) {
   estimation::OdometryPipelineOptions& p = run.pipeline;
   ImuSection imu{run.imu, p.imu};
@@ -215,6 +256,7 @@ void VisitFields(V& v, RunConfig& run) {
   v.Section("prior_map", run.prior_map);
   v.Section("localization", localization);
   v.Section("output", output);
+  v.Section("ground", run.ground);
 }
 
 }  // namespace hylo::config

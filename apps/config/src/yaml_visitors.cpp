@@ -172,4 +172,18 @@ void YamlReadVisitor::Convert(const YAML::Node& node, const std::string& key_pat
   }
 }
 
+void YamlReadVisitor::Convert(const YAML::Node& node, const std::string& key_path,
+                              terrain::GroundMethod* value) const {
+  if (!node.IsScalar() || !terrain::ParseGroundMethod(node.Scalar(), value)) {
+    Fail(key_path, "expected smrf or csf; got " + Describe(node));
+  }
+}
+
+void YamlReadVisitor::Convert(const YAML::Node& node, const std::string& key_path,
+                              terrain::ClothHoleFill* value) const {
+  if (!node.IsScalar() || !terrain::ParseClothHoleFill(node.Scalar(), value)) {
+    Fail(key_path, "expected mean, nearest or reference; got " + Describe(node));
+  }
+}
+
 }  // namespace hylo::config

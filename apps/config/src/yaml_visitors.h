@@ -66,6 +66,10 @@ class YamlReadVisitor {
                estimation::SlidingWindowOptions::LinearSolver* value) const;
   void Convert(const YAML::Node& node, const std::string& key_path,
                estimation::SlidingWindowOptions::RobustLoss* value) const;
+  void Convert(const YAML::Node& node, const std::string& key_path,
+               terrain::GroundMethod* value) const;
+  void Convert(const YAML::Node& node, const std::string& key_path,
+               terrain::ClothHoleFill* value) const;
 
   YAML::Node node_;
   std::string path_;
@@ -115,6 +119,8 @@ class YamlWriteVisitor {
   void Emit(estimation::SlidingWindowOptions::RobustLoss value) {
     *out_ << estimation::ToString(value);
   }
+  void Emit(terrain::GroundMethod value) { *out_ << terrain::ToString(value); }
+  void Emit(terrain::ClothHoleFill value) { *out_ << terrain::ToString(value); }
 
   YAML::Emitter* out_;
 };

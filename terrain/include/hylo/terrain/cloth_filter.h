@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "hylo/terrain/ground_label.h"
 #include "hylo/common/point_types.h"
 
 namespace hylo::terrain {
@@ -85,17 +86,12 @@ struct ClothFilterOptions {
   bool IsValid(std::string* why) const;
 };
 
-enum class GroundLabel : uint8_t {
-  kGround = 0,   ///< within class_threshold_m of the cloth
-  kObject = 1,   ///< farther from the cloth (buildings, vegetation, noise above ground)
-  kInvalid = 2,  ///< non-finite input point, not classified
-};
-
 /// What the filter did. `labels` has one entry per input point, in input order.
 struct ClothFilterResult {
   bool ok = false;                          ///< false: nothing classified, see message
   std::string message;                      ///< why not ok, or a one-line description
-  std::vector<GroundLabel> labels;          ///< per input point
+  std::vector<GroundLabel> labels;          ///< per input point: ground within
+                                            ///< class_threshold_m of the cloth
   std::vector<float> height_above_cloth_m;  ///< per input point: z - cloth height under it, m
                                             ///< (NaN for invalid points); ground is |.| < hcc
   std::size_t num_ground = 0;

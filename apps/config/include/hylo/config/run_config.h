@@ -12,6 +12,7 @@
 #include "hylo/estimation/odometry_pipeline.h"
 #include "hylo/io/log_reader.h"
 #include "hylo/mapping/prior_map.h"
+#include "hylo/terrain/ground_filter.h"
 
 namespace hylo::config {
 
@@ -74,6 +75,10 @@ struct RunConfig {
   std::string initial_guess;  ///< localization.initial_guess: "x y z roll pitch yaw" (m, deg) or
                               ///< 16 numbers (4×4 T_world_imu, row-major); empty = none
   OutputFrames output;
+  /// Offline ground extraction of the run's map (`hylo demo`'s chain): method smrf | csf and
+  /// each back-end's options; defaults for a ground robot's map (GroundFilterOptions::
+  /// ForRobotMaps: SMRF, elevation threshold 0.15 m).
+  terrain::GroundFilterOptions ground = terrain::GroundFilterOptions::ForRobotMaps();
 
   /// Checks every section; *why names the key path, the value and the constraint.
   bool IsValid(std::string* why) const;
