@@ -99,8 +99,16 @@ inline SimPrior BuildSimPrior(const sim::SimulationOptions& sim_options, const s
   prior.points_map = sink.dense.points();
   const std::vector<evaluation::TimedPose> estimate = sink.Estimate();
   if (estimate.empty()) return prior;
+  // The map's place on the site fitted over the whole run, not read off the first pose: a
+  // start attitude off by a fraction of a degree would tilt the whole map by it, and tests
+  // that compare absolute poses (global localization) would measure that tilt, not themselves.
+  const evaluation::AssociatedPoses pairs = evaluation::Associate(estimate, sink.truth);
+  const evaluation::AlignmentResult fit = evaluation::AlignTrajectories(
+      pairs.estimate, pairs.reference, evaluation::Alignment::kSE3);
   Eigen::Isometry3d T_site_imu;
-  if (evaluation::InterpolatePose(sink.truth, estimate.front().t_ns, &T_site_imu)) {
+  if (fit.ok) {
+    prior.T_site_map = fit.T_reference_estimate;
+  } else if (evaluation::InterpolatePose(sink.truth, estimate.front().t_ns, &T_site_imu)) {
     prior.T_site_map = T_site_imu * estimate.front().T_world_body.inverse();
   }
   prior.slam_ate = evaluation::ComputeAte(estimate, sink.truth);

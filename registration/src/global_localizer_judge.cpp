@@ -1,0 +1,140 @@
+// Global localization, step 2: the search's hypotheses refined by the ICP initializer and
+// judged (global_localizer.h): accepted only when one place passes the gates and no other
+// comes close.
+#include <time.h>
+
+#include <algorithm>
+#include <sstream>
+
+#include "hylo/registration/global_localizer.h"
+#include "hylo/registration/voxel_filter.h"
+#include "icp_initializer_internal.h"
+
+namespace hylo::registration {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+double CpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+bool Distinct(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
+              const GlobalLocalizerOptions& options) {
+  return internal::AreDistinct(a, b, options.distinct_translation_m,
+                               options.distinct_yaw_deg * kDegToRad);
+}
+
+std::string Describe(const GlobalHypothesis& h) {
+  std::ostringstream os;
+  const Eigen::Vector3d& t = h.T_refined.translation();
+  os << "(" << t.x() << ", " << t.y() << ") score " << h.score << " inliers " << h.inlier_ratio
+     << " fitness " << h.fitness_m2;
+  return os.str();
+}
+
+// The refined hypothesis with the highest inlier ratio among those distinct from `pose`
+// (nullptr when there is none).
+const GlobalHypothesis* RunnerUp(const std::vector<GlobalHypothesis>& hypotheses,
+                                 const Eigen::Isometry3d& pose,
+                                 const GlobalLocalizerOptions& options) {
+  const GlobalHypothesis* best = nullptr;
+  for (const GlobalHypothesis& h : hypotheses) {
+    if (!h.refined || !Distinct(h.T_refined, pose, options)) continue;
+    if (best == nullptr || h.inlier_ratio > best->inlier_ratio) best = &h;
+  }
+  return best;
+}
+
+}  // namespace
+
+GlobalLocalizationResult GlobalLocalizer::Localize(const PointCloud& scan_imu,
+                                                   const Eigen::Matrix3d& R_level_imu,
+                                                   const GlobalMap& global_map,
+                                                   const NeighborSearch& map) const {
+  const double start_s = CpuSeconds();
+  GlobalLocalizationResult result;
+  result.hypotheses = Search(scan_imu, R_level_imu, global_map, &result.stats);
+  double refine_start_s = -1.0;  // set when the refinements begin
+  const auto finish = [&](GlobalStatus status, const std::string& message) {
+    if (refine_start_s >= 0.0) result.refine_s = CpuSeconds() - refine_start_s;
+    result.status = status;
+    result.message = ToString(status) + ": " + message;
+    result.elapsed_s = CpuSeconds() - start_s;
+    return result;
+  };
+  if (global_map.empty() || map.Size() == 0) return finish(GlobalStatus::kBadInput, "empty map");
+  if (result.stats.scan_points == 0) {
+    return finish(GlobalStatus::kBadInput, "no ground seen near the vehicle, or too few points");
+  }
+  if (result.hypotheses.empty()) {
+    return finish(GlobalStatus::kNotFound, "no place explains the scan");
+  }
+
+  refine_start_s = CpuSeconds();
+  const IcpInitializer judge(icp_judge_);
+  // Every hypothesis refines the same cloud: thin it once, not once per hypothesis (the
+  // initializer's own voxel filter then finds it already thinned).
+  const PointCloud scan_fine =
+      icp_.fine_voxel_m > 0.0 ? UniformSample(scan_imu, static_cast<float>(icp_.fine_voxel_m))
+                              : scan_imu;
+  std::vector<IcpInitializerResult> refinements(result.hypotheses.size());
+  const double best_score = result.hypotheses.front().score;
+  for (std::size_t i = 0; i < result.hypotheses.size(); ++i) {
+    GlobalHypothesis& h = result.hypotheses[i];
+    if (h.score < options_.refine_score_ratio * best_score) break;
+    refinements[i] = judge.Initialize(scan_fine, map, h.T_map_imu);
+    const IcpInitializerResult& r = refinements[i];
+    h.refined = true;
+    h.passes = r.accepted;
+    h.T_refined = r.accepted ? r.T_map_imu : h.T_map_imu;
+    h.fitness_m2 = r.accepted ? r.fitness_score_m2 : r.best_fitness_score_m2;
+    h.inlier_ratio = r.accepted ? r.inlier_ratio : r.best_inlier_ratio;
+  }
+
+  // The passing poses, best inlier ratio first; distinct ones counted.
+  std::vector<std::size_t> passing;
+  for (std::size_t i = 0; i < result.hypotheses.size(); ++i) {
+    if (result.hypotheses[i].passes) passing.push_back(i);
+  }
+  if (passing.empty()) {
+    const GlobalHypothesis& top = result.hypotheses.front();
+    return finish(GlobalStatus::kNotFound, "no place passed the ICP gates (top hypothesis " +
+                                               Describe(top) + ")");
+  }
+  std::stable_sort(passing.begin(), passing.end(), [&](std::size_t a, std::size_t b) {
+    return result.hypotheses[a].inlier_ratio > result.hypotheses[b].inlier_ratio;
+  });
+  const GlobalHypothesis& best = result.hypotheses[passing.front()];
+  std::vector<Eigen::Isometry3d> distinct;
+  for (const std::size_t i : passing) {
+    const Eigen::Isometry3d& T = result.hypotheses[i].T_refined;
+    if (std::none_of(distinct.begin(), distinct.end(),
+                     [&](const Eigen::Isometry3d& d) { return !Distinct(T, d, options_); })) {
+      distinct.push_back(T);
+    }
+  }
+  result.num_passing = static_cast<int>(distinct.size());
+  if (distinct.size() > 1) {
+    return finish(GlobalStatus::kAmbiguous, std::to_string(distinct.size()) +
+                                                " distinct places pass the gates: " +
+                                                Describe(best) + " and more");
+  }
+  const GlobalHypothesis* runner_up = RunnerUp(result.hypotheses, best.T_refined, options_);
+  if (runner_up != nullptr &&
+      runner_up->inlier_ratio >= best.inlier_ratio - options_.ambiguity_inlier_margin) {
+    return finish(GlobalStatus::kAmbiguous,
+                  "two places fit nearly equally: " + Describe(best) + " vs " + Describe(*runner_up));
+  }
+  result.refinement = IcpInitializer(icp_).Initialize(scan_fine, map, best.T_refined);
+  if (!result.refinement.accepted) {
+    return finish(GlobalStatus::kNotFound, "the best place failed the gates with every scan "
+                                           "point: " + result.refinement.message);
+  }
+  result.T_map_imu = result.refinement.T_map_imu;
+  return finish(GlobalStatus::kAccepted, Describe(best));
+}
+
+}  // namespace hylo::registration
