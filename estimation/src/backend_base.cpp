@@ -8,7 +8,10 @@
 namespace hylo::estimation {
 
 BackendBase::BackendBase(const EstimatorOptions& options, const ImuOptions& imu)
-    : options_(options), imu_options_(imu), imu_(imu.enabled) {
+    : options_(options),
+      imu_options_(imu),
+      imu_(imu.enabled),
+      robust_(options.robust_registration) {
   std::string why;
   if (!options_.IsValid(&why)) throw InternalError("invalid options: " + why);
   if (!imu_options_.IsValid(&why)) throw InternalError("invalid options: imu." + why);
@@ -19,6 +22,25 @@ void BackendBase::Restart(const NavState& state) {
   constant_velocity_.Reset();
   initialized_ = true;
   imu_.DropBefore(state.t_ns);
+}
+
+NavState BackendBase::UpdateStart(const NavState& predicted, const DeskewedScan& scan,
+                                  const registration::PlaneMatcher& planes,
+                                  const std::function<std::size_t(const NavState&)>& count_matches,
+                                  UpdateSummary* summary) {
+  NavState start = predicted;
+  if (!imu_options_.enabled && options_.no_imu.yaw_search_deg > 0.0) {
+    start = SearchYaw(predicted, options_.no_imu, count_matches);
+  }
+  if (robust_.enabled()) {
+    summary->robust = robust_.Align(scan.points_lidar, start.T_map_lidar(), planes);
+    start = WithLidarPose(start, summary->robust.T_map_lidar);
+  }
+  return start;
+}
+
+void BackendBase::LearnFromUpdate(const NavState& predicted, const NavState& updated) {
+  if (robust_.enabled()) robust_.Observe(predicted.T_map_lidar(), updated.T_map_lidar());
 }
 
 NavState BackendBase::PredictAt(int64_t t_ns) const {

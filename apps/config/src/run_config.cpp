@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "hylo/common/option_checks.h"
+#include "hylo/io/atomic_file.h"
 #include "hylo/registration/pose_guess.h"
 #include "run_config_fields.h"
 #include "yaml_visitors.h"
@@ -151,10 +152,11 @@ std::string ToYaml(const RunConfig& config) {
 }
 
 void SaveRunConfig(const std::string& path, const RunConfig& config) {
-  std::ofstream file(path);
-  if (!file) throw ConfigError("cannot write configuration file '" + path + "'");
-  file << "# effective configuration written by hylo\n" << ToYaml(config);
-  if (!file) throw ConfigError("failed while writing configuration file '" + path + "'");
+  try {
+    io::WriteFileAtomically(path, "# effective configuration written by hylo\n" + ToYaml(config));
+  } catch (const std::runtime_error& e) {
+    throw ConfigError(std::string("configuration file: ") + e.what());
+  }
 }
 
 }  // namespace hylo::config

@@ -110,6 +110,22 @@ void VisitFields(V& v, estimation::NoImuOptions& o) {
 }
 
 template <class V>
+void VisitFields(V& v, estimation::RobustRegistrationOptions& o) {
+  v("enabled", o.enabled);
+  v("coarse_voxel_m", o.coarse_voxel_m);
+  v("max_iterations", o.max_iterations);
+  v("initial_deviation_m", o.initial_deviation_m);
+  v("min_deviation_m", o.min_deviation_m);
+  v("final_kernel_m", o.final_kernel_m);
+  v("settle_fraction", o.settle_fraction);
+  v("inlier_distance_m", o.inlier_distance_m);
+  v("min_inlier_share", o.min_inlier_share);
+  v("inlier_history", o.inlier_history);
+  v("retry_yaw_range_deg", o.retry_yaw_range_deg);
+  v("retry_yaw_step_deg", o.retry_yaw_step_deg);
+}
+
+template <class V>
 void VisitFields(V& v, estimation::IeskfOptions& o) {
   v("max_iterations", o.max_iterations);
   v("convergence_rotation_rad", o.convergence_rotation_rad);
@@ -249,6 +265,7 @@ void VisitFields(V& v, RunConfig& run) {
   v.Section("initial_uncertainty", p.initial_uncertainty);
   v.Section("lidar_update", p.estimator.lidar_update);
   v.Section("no_imu", p.estimator.no_imu);
+  v.Section("robust_registration", p.estimator.robust_registration);
   v.Section("ieskf", p.estimator.ieskf);
   v.Section("sliding_window", p.estimator.sliding_window);
   v.Section("planes", p.planes);

@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "hylo/io/atomic_file.h"
+
 namespace hylo::io::internal {
 
 static_assert(sizeof(float) == 4 && sizeof(double) == 8, "IEEE-754 float/double expected");
@@ -170,12 +172,7 @@ std::vector<std::string> SplitWords(const std::string& line) {
 
 void WriteFileOrThrow(const std::string& path, const std::string& text,
                       const std::vector<uint8_t>& body) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) ThrowFileError(path, "cannot open for writing");
-  out.write(text.data(), static_cast<std::streamsize>(text.size()));
-  out.write(reinterpret_cast<const char*>(body.data()), static_cast<std::streamsize>(body.size()));
-  out.close();
-  if (!out) ThrowFileError(path, "write failed (disk full or I/O error)");
+  WriteFileAtomically(path, text, reinterpret_cast<const char*>(body.data()), body.size());
 }
 
 }  // namespace hylo::io::internal

@@ -13,6 +13,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "hylo/io/atomic_file.h"
+
 namespace hylo::io {
 namespace {
 
@@ -22,10 +24,7 @@ using terrain::GridMap;
 constexpr double kNoDataValue = -9999.0;
 
 void WriteFile(const std::string& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error(path + ": cannot open for writing");
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if (!out) throw std::runtime_error(path + ": write failed");
+  WriteFileAtomically(path, bytes);
 }
 
 void CheckClasses(const GridMap& grid, const std::vector<CellClass>& classes) {

@@ -6,6 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "hylo/io/atomic_file.h"
+
 namespace hylo::io {
 namespace {
 
@@ -25,15 +27,7 @@ std::string DumpJson(const Json& json, int indent) {
 }
 
 void WriteJsonFile(const std::string& path, const Json& json) {
-  const std::string text = DumpJson(json, 2) + '\n';
-  std::ofstream file(path, std::ios::binary | std::ios::trunc);
-  if (!file) throw std::runtime_error("cannot write JSON file '" + path + "'");
-  file.write(text.data(), static_cast<std::streamsize>(text.size()));
-  file.close();
-  if (!file) {
-    std::remove(path.c_str());
-    throw std::runtime_error("failed while writing JSON file '" + path + "' (disk full?)");
-  }
+  WriteFileAtomically(path, DumpJson(json, 2) + '\n');
 }
 
 Json ReadJsonFile(const std::string& path) {

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "cloud_fields.h"
+#include "hylo/io/atomic_file.h"
 
 namespace hylo::io {
 namespace {
@@ -46,17 +47,6 @@ double ParseNumber(const std::string& path, int line_no, const std::string& word
     LineError(path, line_no, "'" + word + "' is not a finite number");
   }
   return value;
-}
-
-std::ofstream OpenForWriting(const std::string& path) {
-  std::ofstream out(path, std::ios::trunc);
-  if (!out) ThrowFileError(path, "cannot open for writing");
-  return out;
-}
-
-void CloseOrThrow(const std::string& path, std::ofstream* out) {
-  out->close();
-  if (!*out) ThrowFileError(path, "write failed (disk full or I/O error)");
 }
 
 }  // namespace
@@ -129,7 +119,8 @@ std::vector<StampedPose> ReadTum(const std::string& path) {
 }
 
 void WriteTum(const std::string& path, const std::vector<StampedPose>& poses) {
-  std::ofstream out = OpenForWriting(path);
+  AtomicFile file(path);
+  std::ofstream& out = file.stream();
   out << "# t x y z qx qy qz qw (T_world_body; t in s)\n";
   for (const StampedPose& p : poses) {
     const Eigen::Quaterniond& q = p.orientation;
@@ -139,7 +130,7 @@ void WriteTum(const std::string& path, const std::vector<StampedPose>& poses) {
     }
     out << '\n';
   }
-  CloseOrThrow(path, &out);
+  file.Commit();
 }
 
 bool PoseFromMatrix(const Eigen::Matrix<double, 3, 4>& T_world_body, int64_t t_ns,
@@ -206,7 +197,8 @@ std::vector<StampedPose> ReadKitti(const std::string& path, const KittiTiming& t
 
 void WriteKitti(const std::string& path, const std::vector<StampedPose>& poses,
                 const std::string& times_path) {
-  std::ofstream out = OpenForWriting(path);
+  AtomicFile file(path);
+  std::ofstream& out = file.stream();
   for (const StampedPose& p : poses) {
     const Eigen::Matrix3d R = p.orientation.normalized().toRotationMatrix();
     for (int k = 0; k < 12; ++k) {
@@ -215,11 +207,11 @@ void WriteKitti(const std::string& path, const std::vector<StampedPose>& poses,
     }
     out << '\n';
   }
-  CloseOrThrow(path, &out);
+  file.Commit();
   if (times_path.empty()) return;
-  std::ofstream times = OpenForWriting(times_path);
-  for (const StampedPose& p : poses) times << FormatNsAsSeconds(p.t_ns) << '\n';
-  CloseOrThrow(times_path, &times);
+  AtomicFile times(times_path);
+  for (const StampedPose& p : poses) times.stream() << FormatNsAsSeconds(p.t_ns) << '\n';
+  times.Commit();
 }
 
 }  // namespace hylo::io

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "hylo/io/atomic_file.h"
+
 namespace hylo::report {
 namespace {
 
@@ -81,9 +83,7 @@ std::string RenderMarkdown(const ReportContent& content, const std::string& repo
 
 void WriteReport(const std::string& path, const ReportContent& content) {
   const std::string dir = fs::path(path).parent_path().string();
-  std::ofstream out(path);
-  out << RenderMarkdown(content, dir.empty() ? "." : dir);
-  if (!out) throw std::runtime_error("cannot write the report '" + path + "'");
+  io::WriteFileAtomically(path, RenderMarkdown(content, dir.empty() ? "." : dir));
 }
 
 }  // namespace hylo::report

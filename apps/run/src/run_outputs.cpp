@@ -4,6 +4,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "hylo/io/atomic_file.h"
+
 namespace hylo::run {
 namespace {
 
@@ -22,11 +24,10 @@ void WriteMatrix(std::ofstream& out, const Eigen::Matrix<double, 6, 6>& m) {
   }
 }
 
-std::ofstream OpenOrThrow(const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write '" + path + "'");
-  out.precision(9);
-  return out;
+// A CSV written whole or not at all, with enough digits for nanometres and nanoseconds.
+std::ofstream& CsvStream(io::AtomicFile* file) {
+  file->stream().precision(9);
+  return file->stream();
 }
 
 }  // namespace
@@ -54,7 +55,8 @@ std::vector<estimation::NavState> LiveStates(const std::vector<estimation::ScanR
 
 void WriteOdometryCsv(const std::string& path, const std::vector<estimation::ScanResult>& results,
                       const Eigen::Vector3d& origin_world, const config::OutputFrames& output) {
-  std::ofstream out = OpenOrThrow(path);
+  io::AtomicFile file(path);
+  std::ofstream& out = CsvStream(&file);
   out << "t_s,frame_id,child_frame_id,x,y,z,qx,qy,qz,qw,vx,vy,vz,wx,wy,wz";
   WriteCovarianceHeader(out, "pose_cov", kPoseAxes);
   WriteCovarianceHeader(out, "twist_cov", kTwistAxes);
@@ -78,10 +80,12 @@ void WriteOdometryCsv(const std::string& path, const std::vector<estimation::Sca
         << r.health.fitness_m2 << ',' << r.health.inlier_ratio << ',' << r.update.num_matches
         << ',' << (r.health.good ? 1 : 0) << '\n';
   }
+  file.Commit();
 }
 
 void WriteTimingCsv(const std::string& path, const std::vector<estimation::ScanResult>& results) {
-  std::ofstream out = OpenOrThrow(path);
+  io::AtomicFile file(path);
+  std::ofstream& out = CsvStream(&file);
   out << "t_s,points,downsampled,matches,iterations,converged,applied,degenerate,"
          "deskew_ms,update_ms,map_ms,total_ms,cpu_ms,map_points\n";
   for (const auto& r : results) {
@@ -91,6 +95,7 @@ void WriteTimingCsv(const std::string& path, const std::vector<estimation::ScanR
         << r.deskew_ms << ',' << r.update_ms << ',' << r.map_ms << ',' << r.total_ms << ','
         << r.cpu_ms << ',' << r.map_points << '\n';
   }
+  file.Commit();
 }
 
 double Percentile(std::vector<double> values, double q) {

@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <stdexcept>
 
+#include "hylo/io/atomic_file.h"
 #include "hylo/sim/random.h"
 
 namespace hylo::sim {
@@ -79,8 +80,8 @@ io::CloudFile ReferenceCloud(const Site& site, const World& world, double object
 }
 
 void WriteSlopeGrid(const std::string& path, const Site& site, double resolution_m) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write slope grid '" + path + "'");
+  io::AtomicFile file(path);
+  std::ofstream& out = file.stream();
   const Eigen::Vector2d extent = site.site_max_m - site.site_min_m;
   const int cols = static_cast<int>(std::ceil(extent.x() / resolution_m));
   const int rows = static_cast<int>(std::ceil(extent.y() / resolution_m));
@@ -103,7 +104,7 @@ void WriteSlopeGrid(const std::string& path, const Site& site, double resolution
     }
     out << "\n";
   }
-  if (!out) throw std::runtime_error("error while writing slope grid '" + path + "'");
+  file.Commit();
 }
 
 }  // namespace hylo::sim

@@ -132,13 +132,12 @@ void Ieskf::Correct(const DeskewedScan& scan, const registration::PlaneMatcher& 
   const Eigen::MatrixXd P_prior_inv = P_prior.ldlt().solve(Eigen::MatrixXd::Identity(dim, dim));
   const LidarUpdateOptions& lidar = options_.lidar_update;
   const double weight = 1.0 / (lidar.lidar_noise_m * lidar.lidar_noise_m);
-  NavState x = prior;
-  if (!imu_options_.enabled && options_.no_imu.yaw_search_deg > 0.0) {
-    x = SearchYaw(prior, options_.no_imu, [&](const NavState& candidate) {
-      Associate(candidate, scan, planes);
-      return BuildLidarSystem(candidate, scan, planes).matches;
-    });
-  }
+  NavState x = UpdateStart(prior, scan, planes,
+                           [&](const NavState& candidate) {
+                             Associate(candidate, scan, planes);
+                             return BuildLidarSystem(candidate, scan, planes).matches;
+                           },
+                           summary);
   Eigen::MatrixXd A;
   bool rematch = true;
   for (int it = 0; it < options_.ieskf.max_iterations; ++it) {
@@ -167,6 +166,7 @@ void Ieskf::Correct(const DeskewedScan& scan, const registration::PlaneMatcher& 
     if (summary->converged) break;
   }
   state_ = x;
+  LearnFromUpdate(prior, x);
   const Eigen::MatrixXd P_post = A.ldlt().solve(Eigen::MatrixXd::Identity(dim, dim));
   P_.topLeftCorner(dim, dim) = 0.5 * (P_post + P_post.transpose());
   summary->applied = true;

@@ -165,7 +165,7 @@ UpdateSummary SlidingWindow::Update(const DeskewedScan& scan,
   if (planes.map().Size() == 0) {
     summary.message = "map is empty: prediction only";
   } else {
-    Correct(planes, &summary);
+    Correct(scan, planes, &summary);
   }
   state_ = StateAt(window_.size() - 1);
   if (summary.applied) FinishUpdate(&summary);
@@ -177,17 +177,17 @@ UpdateSummary SlidingWindow::Update(const DeskewedScan& scan,
   return summary;
 }
 
-void SlidingWindow::Correct(const registration::PlaneMatcher& planes, UpdateSummary* summary) {
+void SlidingWindow::Correct(const DeskewedScan& scan, const registration::PlaneMatcher& planes,
+                            UpdateSummary* summary) {
   WindowState& newest = *window_.back();
   const StateBlocks predicted = newest.blocks;
-  if (!imu_options_.enabled && options_.no_imu.yaw_search_deg > 0.0) {
-    const NavState best =
-        SearchYaw(StateAt(window_.size() - 1), options_.no_imu, [&](const NavState& candidate) {
-          newest.blocks.FromNavState(candidate);
-          return AssociateNewest(planes);
-        });
-    newest.blocks.FromNavState(best);
-  }
+  const NavState predicted_state = StateAt(window_.size() - 1);
+  newest.blocks.FromNavState(UpdateStart(predicted_state, scan, planes,
+                                         [&](const NavState& candidate) {
+                                           newest.blocks.FromNavState(candidate);
+                                           return AssociateNewest(planes);
+                                         },
+                                         summary));
   const SlidingWindowOptions& o = options_.sliding_window;
   const int min_matches = options_.lidar_update.min_matches;
   for (int round = 0; round < o.association_rounds; ++round) {
@@ -206,6 +206,7 @@ void SlidingWindow::Correct(const registration::PlaneMatcher& planes, UpdateSumm
     summary->converged = report.converged;
     summary->applied = true;
   }
+  LearnFromUpdate(predicted_state, StateAt(window_.size() - 1));
 }
 
 void SlidingWindow::FinishUpdate(UpdateSummary* summary) {

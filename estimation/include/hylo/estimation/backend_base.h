@@ -5,6 +5,8 @@
 // implements Initialize, Update, Covariance and Finish (Estimator); prediction, IMU buffering
 // and the hand-over of finalized states are the same for all.
 
+#include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "hylo/estimation/estimator.h"
@@ -12,6 +14,7 @@
 #include "hylo/estimation/imu_buffer.h"
 #include "hylo/estimation/imu_options.h"
 #include "hylo/estimation/no_imu_motion.h"
+#include "hylo/estimation/robust_registration.h"
 
 namespace hylo::estimation {
 
@@ -29,6 +32,16 @@ class BackendBase : public Estimator {
   /// The shared part of Initialize: the live state, a fresh motion model, the IMU samples from
   /// `state`'s time on.
   void Restart(const NavState& state);
+  /// The pose a lidar update starts from: `predicted`, turned by the no-IMU yaw search (which
+  /// scores a candidate by `count_matches`) and aligned by the robust registration, where
+  /// they are on; the alignment is reported in summary->robust.
+  NavState UpdateStart(const NavState& predicted, const DeskewedScan& scan,
+                       const registration::PlaneMatcher& planes,
+                       const std::function<std::size_t(const NavState&)>& count_matches,
+                       UpdateSummary* summary);
+  /// After an applied update that went from `predicted` to `updated`: how far the motion
+  /// model was off, for the robust registration's adaptive threshold.
+  void LearnFromUpdate(const NavState& predicted, const NavState& updated);
 
   const EstimatorOptions options_;
   const ImuOptions imu_options_;
@@ -36,6 +49,7 @@ class BackendBase : public Estimator {
   NavState state_;                      // the live state
   ImuBuffer imu_;                       // samples since the last update
   ConstantVelocity constant_velocity_;  // the motion model without an IMU
+  RobustRegistration robust_;           // the wide-basin start, when enabled
   std::vector<NavState> finalized_;     // finalized states not taken yet
 };
 

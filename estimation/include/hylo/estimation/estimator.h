@@ -24,6 +24,7 @@
 #include "hylo/common/point_types.h"
 #include "hylo/common/sensor_data.h"
 #include "hylo/estimation/nav_state.h"
+#include "hylo/estimation/robust_registration.h"
 #include "hylo/registration/plane_matcher.h"
 
 namespace hylo::estimation {
@@ -52,6 +53,7 @@ struct UpdateSummary {
   /// Per offered point, its point-to-plane residual at the final state (m), NaN where the
   /// point had no plane. How well the scan fits the map, without a second search of it.
   std::vector<float> point_residuals_m;
+  RobustAlignment robust;        ///< the robust registration's start (attempts 0 when off)
   std::string message;           ///< empty when all went well; otherwise why not
 };
 

@@ -10,6 +10,7 @@
 #include "hylo/estimation/ieskf/ieskf_options.h"
 #include "hylo/estimation/lidar_update.h"
 #include "hylo/estimation/no_imu_motion.h"
+#include "hylo/estimation/robust_registration.h"
 #include "hylo/estimation/sliding_window/sliding_window_options.h"
 
 namespace hylo::estimation {
@@ -18,6 +19,8 @@ struct EstimatorOptions {
   Estimator::Backend backend = Estimator::Backend::kIeskf;  ///< `backend`
   LidarUpdateOptions lidar_update;      ///< the point-to-plane measurement, both back-ends
   NoImuOptions no_imu;                  ///< motion model and aids without an IMU, both back-ends
+  /// Wide-basin alignment before the lidar update, both back-ends (off by default).
+  RobustRegistrationOptions robust_registration;
   IeskfOptions ieskf;                   ///< used when backend == kIeskf
   SlidingWindowOptions sliding_window;  ///< used when backend == kSlidingWindow
 

@@ -54,7 +54,8 @@ class SlidingWindow final : public BackendBase {
   void AppendState(const DeskewedScan& scan);  // sliding_window.cpp
   void SetNewestScan(const DeskewedScan& scan);
   void MarginalizeOldest();  // sliding_window.cpp
-  void Correct(const registration::PlaneMatcher& planes, UpdateSummary* summary);
+  void Correct(const DeskewedScan& scan, const registration::PlaneMatcher& planes,
+               UpdateSummary* summary);
   void Solve(SolveReport* report, double budget_s);  // sliding_window_solve.cpp
   std::size_t AssociateNewest(const registration::PlaneMatcher& planes);
   void Reweight();
