@@ -1,7 +1,9 @@
 // `hylo localize --log LOG --map MAP --config C [--guess G] [--update-after S] --out DIR`:
 // localization in a prior map (Alamanos et al., Sec. III). The first static scans are
 // registered to the map by the ICP initializer from the guess (accepted only under the
-// fitness threshold, else a clear error and no odometry); then the configured back-end tracks
+// fitness threshold); without a guess, or when it is rejected, the global localizer searches
+// the whole map (localization.global_enabled). No accepted start: a clear error and no
+// odometry. Then the configured back-end tracks
 // against the prior, in hybrid mode extending the map after localization.update_after_s.
 // Writes the files of hylo/run/run_log.h, with the paper's cloud-to-cloud metric and every
 // initialization/loss/relocalization event in summary.json.
@@ -36,11 +38,12 @@ void RunLocalize(const LocalizeArgs& args) {
     }
   }
   const std::string guess = args.guess.empty() ? request.config.initial_guess : args.guess;
-  if (guess.empty()) {
-    throw std::invalid_argument("no initial guess: pass --guess \"x y z roll pitch yaw\" or set "
+  if (guess.empty() && !request.config.pipeline.localization.global_enabled) {
+    throw std::invalid_argument("no initial guess and localization.global_enabled is false: "
+                                "pass --guess \"x y z roll pitch yaw\" or set "
                                 "localization.initial_guess in " + args.config);
   }
-  request.guess_world_imu = registration::ParsePoseGuess(guess);
+  if (!guess.empty()) request.guess_world_imu = registration::ParsePoseGuess(guess);
   request.config.initial_guess = guess;  // saved with the effective config
   request.c2c_max_distance_m = args.c2c_max_distance_m;
   request.out_dir = args.out;
@@ -66,7 +69,8 @@ void AddLocalizeCommand(CLI::App& root) {
   cmd->add_option("--map", args->map, "prior map (PCD/PLY, world frame)")->required();
   cmd->add_option("--config", args->config, "run configuration (YAML)")->required();
   cmd->add_option("--guess", args->guess,
-                  "T_world_imu at the start: \"x y z roll pitch yaw\" (m, deg) or 16 numbers");
+                  "T_world_imu at the start: \"x y z roll pitch yaw\" (m, deg) or 16 numbers; "
+                  "without one the whole map is searched");
   cmd->add_option("--update-after", args->update_after_s,
                   "hybrid mode: add scans to the map after this many seconds (-1 = never)");
   cmd->add_option("--c2c-max-dist", args->c2c_max_distance_m,

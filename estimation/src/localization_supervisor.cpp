@@ -41,12 +41,16 @@ bool ImuAtRest(const std::vector<ImuSample>& imu, const NavState& imu_start,
          std::abs(accel_norm_mean - gravity_mps2) < init.gravity_tolerance_mps2;
 }
 
-LocalizationSupervisor::LocalizationSupervisor(const LocalizationOptions& options,
-                                               const InitialUncertainty& uncertainty,
-                                               const Eigen::Isometry3d& T_map_imu_guess)
+LocalizationSupervisor::LocalizationSupervisor(
+    const LocalizationOptions& options, const InitialUncertainty& uncertainty,
+    const std::optional<Eigen::Isometry3d>& T_map_imu_guess,
+    const registration::GlobalMap* global_map, const std::string& global_map_unavailable)
     : options_(options),
       uncertainty_(uncertainty),
       icp_initializer_(options.icp),
+      global_localizer_(options.global, options.icp),
+      global_map_(global_map),
+      global_map_unavailable_(global_map_unavailable),
       guess_(T_map_imu_guess) {}
 
 void LocalizationSupervisor::RequestRelocalization(const Eigen::Isometry3d& T_map_imu_guess) {
@@ -67,21 +71,33 @@ void LocalizationSupervisor::AddStaticScan(const PointCloud& points_imu, int64_t
 bool LocalizationSupervisor::Start(NavState start, bool gravity_known,
                                    const registration::NeighborSearch& map, Estimator* estimator,
                                    std::string* why) {
-  Eigen::Isometry3d guess = guess_;
+  std::optional<Eigen::Isometry3d> guess = guess_;
   if (gravity_known) {
     // Roll and pitch from gravity, yaw and position from the user's guess.
     const Eigen::Vector3d up_imu = start.R_map_imu.Matrix().transpose() * Eigen::Vector3d::UnitZ();
-    guess = registration::GuessFromGravity(guess_.translation(), YawOf(guess_.rotation()), up_imu);
+    if (guess) {
+      guess = registration::GuessFromGravity(guess->translation(), YawOf(guess->rotation()),
+                                             up_imu);
+    }
     start.t_ns = static_.imu_end_t_ns;
   }
-  const registration::IcpInitializerResult icp =
-      icp_initializer_.Initialize(static_.points_imu, map, guess);
+  registration::IcpInitializerResult icp;
+  std::string verdict;
+  if (guess) {
+    icp = icp_initializer_.Initialize(static_.points_imu, map, *guess);
+    verdict = icp.message;
+  }
+  if (!icp.accepted && options_.global_enabled) {
+    verdict = (guess ? "guess rejected (" + verdict + "), then " : std::string()) +
+              "global localization " + StartGlobally(start, gravity_known, map, &icp);
+  } else if (!guess) {
+    verdict = "no guess and global localization is disabled (localization.global_enabled)";
+  }
   const int scans = static_.scans;
   static_ = StaticScans();
   if (!icp.accepted) {
-    *why = "ICP initializer rejected the start (" + std::to_string(scans) +
-           " static scans): " + icp.message;
-    AddEvent(LocalizationEvent::Kind::kInitializationFailed, start.t_ns, icp.message,
+    *why = "no start pose (" + std::to_string(scans) + " static scans): " + verdict;
+    AddEvent(LocalizationEvent::Kind::kInitializationFailed, start.t_ns, verdict,
              Eigen::Isometry3d::Identity(), &icp);
     return false;
   }
@@ -92,8 +108,26 @@ bool LocalizationSupervisor::Start(NavState start, bool gravity_known,
   estimator->Initialize(start, uncertainty_.LocalizedCovariance());
   start_t_ns_ = start.t_ns;
   started_ = true;
-  AddEvent(LocalizationEvent::Kind::kInitialized, start.t_ns, icp.message, icp.T_map_imu, &icp);
+  AddEvent(LocalizationEvent::Kind::kInitialized, start.t_ns, verdict, icp.T_map_imu, &icp);
   return true;
+}
+
+std::string LocalizationSupervisor::StartGlobally(const NavState& start, bool gravity_known,
+                                                  const registration::NeighborSearch& map,
+                                                  registration::IcpInitializerResult* icp) const {
+  if (global_map_ == nullptr) return "unavailable: " + global_map_unavailable_;
+  // With an IMU at rest, gravity levels the scans; without one a ground vehicle is taken to
+  // start near level (the refinement then corrects a few degrees of tilt).
+  const Eigen::Matrix3d R_level = gravity_known
+                                      ? registration::LevellingRotation(start.R_map_imu.Matrix())
+                                      : Eigen::Matrix3d::Identity();
+  const registration::GlobalLocalizationResult r =
+      global_localizer_.Localize(static_.points_imu, R_level, *global_map_, map);
+  if (r.status == registration::GlobalStatus::kAccepted) *icp = r.refinement;
+  std::ostringstream os;
+  os << r.message << " (" << r.stats.nodes_scored << " search nodes, " << r.elapsed_s
+     << " s CPU)";
+  return os.str();
 }
 
 void LocalizationSupervisor::Supervise(const std::function<PointCloud()>& sweep_imu,

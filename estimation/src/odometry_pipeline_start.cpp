@@ -5,6 +5,8 @@
 // accumulated for the ICP start until init_scans static scans are there or the vehicle moves.
 // Without an IMU nothing says the vehicle is at rest: the first scan starts the run (SLAM at
 // the identity, localization from the first scan alone) and is then processed as any other.
+#include <stdexcept>
+
 #include "hylo/common/check.h"
 #include "hylo/estimation/odometry_pipeline.h"
 
@@ -13,12 +15,24 @@ namespace hylo::estimation {
 void OdometryPipeline::SetPriorMap(const PointCloud& points_map) {
   HYLO_CHECK(status_ == Status::kInitializing && counters_.scans_processed == 0);
   map_.SetPrior(points_map);
+  global_map_.reset();
+  global_map_unavailable_ = "global localization is disabled (localization.global_enabled)";
+  if (!options_.localization.global_enabled) return;
+  try {
+    global_map_ = std::make_unique<registration::GlobalMap>(
+        registration::GlobalMap::Build(points_map, options_.localization.global_map));
+  } catch (const std::invalid_argument& e) {  // no point, or a raster too large for memory
+    global_map_unavailable_ = e.what();
+  }
 }
 
-void OdometryPipeline::SetInitialGuess(const Eigen::Isometry3d& T_map_imu_guess) {
+void OdometryPipeline::SetInitialGuess(const std::optional<Eigen::Isometry3d>& T_map_imu_guess) {
   HYLO_CHECK(status_ == Status::kInitializing);
   supervisor_ = std::make_unique<LocalizationSupervisor>(
-      options_.localization, options_.initial_uncertainty, T_map_imu_guess);
+      options_.localization, options_.initial_uncertainty, T_map_imu_guess, global_map_.get(),
+      global_map_.get() == nullptr && global_map_unavailable_.empty()
+          ? "no prior map was given (SetPriorMap)"
+          : global_map_unavailable_);
 }
 
 void OdometryPipeline::RequestRelocalization(const Eigen::Isometry3d& T_map_imu_guess) {
@@ -36,7 +50,7 @@ void OdometryPipeline::Fail(const std::string& why) {
 
 bool OdometryPipeline::Start(const MeasurementGroup& group) {
   if (map_.prior_size() > 0 && !supervisor_) {
-    Fail("a prior map was given without an initial guess (SetInitialGuess)");
+    Fail("a prior map was given without SetInitialGuess (std::nullopt: a global start)");
     return true;
   }
   if (!options_.imu.enabled) return StartWithoutImu(group);

@@ -21,7 +21,8 @@ bool LocalizationOptions::IsValid(std::string* why) const {
          CheckAtLeast("min_matches", min_matches, 0, "", why) &&
          CheckAtLeast("lost_after_scans", lost_after_scans, 1, "", why) &&
          CheckAtLeast("relocalize_retry_scans", relocalize_retry_scans, 1, "", why) &&
-         CheckSection(icp, "icp", why);
+         CheckSection(icp, "icp", why) && CheckSection(global, "global", why) &&
+         CheckSection(global_map, "global_map", why);
 }
 
 ScanHealth EvaluateScanHealth(const UpdateSummary& update, const LocalizationOptions& options) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "apps/cli_test_util.h"
 #include "hylo/io/cloud_io.h"
@@ -55,10 +56,29 @@ TEST_F(LocalizeCliTest, AnEmptyMapIsNamed) {
   EXPECT_NE(error.find("no point"), std::string::npos) << error;
 }
 
-TEST_F(LocalizeCliTest, AMissingGuessIsExplained) {
+TEST_F(LocalizeCliTest, AMissingGuessIsExplainedWhenGlobalLocalizationIsOff) {
+  // Without a guess the whole map is searched, unless the configuration turns that off.
+  const std::string config = Path("no_global.yaml");
+  {
+    std::ofstream out(config);
+    out << ReadText(kConfig) << "\nlocalization:\n  global_enabled: false\n";
+  }
+  const std::string err = Path("stderr.txt");
+  const int rc = testing::RunHylo("localize --config " + config + " --out " + Path("out") +
+                                      " --log " + Path("none.bag") + " --map " + Path("map.pcd"),
+                                  "/dev/null", err);
+  const std::string error = ReadText(err);
+  EXPECT_EQ(rc, 1);
+  EXPECT_NE(error.find("--guess"), std::string::npos) << error;
+  EXPECT_NE(error.find("global_enabled"), std::string::npos) << error;
+}
+
+TEST_F(LocalizeCliTest, WithoutAGuessOnlyTheLogIsStillNeeded) {
+  // Global start: no guess is asked for; the missing log is the first problem named.
   std::string error;
   EXPECT_EQ(Localize("--log " + Path("none.bag") + " --map " + Path("map.pcd"), &error), 1);
-  EXPECT_NE(error.find("--guess"), std::string::npos) << error;
+  EXPECT_EQ(error.find("--guess"), std::string::npos) << error;
+  EXPECT_NE(error.find("none.bag"), std::string::npos) << error;
 }
 
 TEST_F(LocalizeCliTest, AMalformedGuessNamesTheProblem) {

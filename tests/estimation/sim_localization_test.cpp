@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 
 #include "estimation/param_printers.h"
@@ -94,7 +95,7 @@ struct LocalizationRun {
 // Runs session B (options' duration) localizing in the shared prior from `guess`.
 LocalizationRun RunSessionB(const sim::SimulationOptions& sim_options,
                             const estimation::OdometryPipelineOptions& options,
-                            const Eigen::Isometry3d& guess,
+                            const std::optional<Eigen::Isometry3d>& guess,
                             const std::function<void(std::size_t, estimation::OdometryPipeline*)>&
                                 before_scan = {}) {
   LocalizationRun run;
@@ -281,15 +282,47 @@ TEST(SimRelocalization, BadHealthDeclaresLossAndRelocalizes) {
 
 TEST(SimLocalizationBadInput, AGuessFarOutsideTheMapIsAClearErrorWithoutOdometry) {
   Eigen::Isometry3d far = PerturbedStart(SessionStartTruth(ShortB()), 400.0, -300.0, 0.0);
-  const LocalizationRun run =
-      RunSessionB(ShortB(), LocalizationOptions(Estimator::Backend::kIeskf, -1.0), far);
+  estimation::OdometryPipelineOptions options =
+      LocalizationOptions(Estimator::Backend::kIeskf, -1.0);
+  options.localization.global_enabled = false;  // the guess alone
+  const LocalizationRun run = RunSessionB(ShortB(), options, far);
   const auto& pipeline = run.sink->pipeline;
   EXPECT_EQ(pipeline.status(), estimation::OdometryPipeline::Status::kFailed);
-  EXPECT_NE(pipeline.message().find("ICP initializer rejected"), std::string::npos)
-      << pipeline.message();
+  EXPECT_NE(pipeline.message().find("no start pose"), std::string::npos) << pipeline.message();
   EXPECT_TRUE(run.sink->results.empty()) << "no pose may be reported from a rejected start";
   EXPECT_TRUE(HasEvent(pipeline, LocalizationEvent::Kind::kInitializationFailed));
 }
+
+// Without a guess, or from a guess 500 m off, the global localizer finds the start in the
+// whole prior map, and localization runs as from a good guess.
+class SimGlobalStart : public ::testing::TestWithParam<bool> {};
+
+TEST_P(SimGlobalStart, StartsWithoutAUsableGuess) {
+  const bool with_far_guess = GetParam();
+  std::optional<Eigen::Isometry3d> guess;
+  if (with_far_guess) guess = PerturbedStart(SessionStartTruth(ShortB()), 400.0, -300.0, 0.0);
+  const LocalizationRun run =
+      RunSessionB(ShortB(), LocalizationOptions(Estimator::Backend::kIeskf, -1.0), guess);
+  const auto& pipeline = run.sink->pipeline;
+  ASSERT_NE(pipeline.status(), estimation::OdometryPipeline::Status::kFailed)
+      << pipeline.message();
+  ASSERT_FALSE(pipeline.events().empty());
+  const LocalizationEvent& start = pipeline.events().front();
+  EXPECT_EQ(start.kind, LocalizationEvent::Kind::kInitialized);
+  EXPECT_NE(start.message.find("global localization accepted"), std::string::npos)
+      << start.message;
+  if (with_far_guess) EXPECT_NE(start.message.find("guess rejected"), std::string::npos);
+  ASSERT_TRUE(run.ate.ok);
+  EXPECT_LE(run.ate.rmse_m, 0.03);
+  // The start pose itself, against the truth in the prior's frame (not aligned).
+  const Eigen::Isometry3d truth_map = PerturbedStart(SessionStartTruth(ShortB()), 0.0, 0.0, 0.0);
+  EXPECT_LT((start.T_map_imu.translation() - truth_map.translation()).norm(), 0.1);
+}
+
+INSTANTIATE_TEST_SUITE_P(GuessOrNot, SimGlobalStart, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& info) {
+                           return std::string(info.param ? "FarGuess" : "NoGuess");
+                         });
 
 TEST(SimLocalizationBadInput, AnEmptyPriorMapIsAClearError) {
   LocalizationSink sink(LocalizationOptions(Estimator::Backend::kIeskf, -1.0), 0.1f);

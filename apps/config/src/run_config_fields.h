@@ -187,6 +187,31 @@ void VisitFields(V& v, registration::IcpInitializerOptions& o) {
 }
 
 template <class V>
+void VisitFields(V& v, registration::GlobalLocalizerOptions& o) {
+  v("min_range_m", o.min_range_m);
+  v("max_range_m", o.max_range_m);
+  v("ground_clearance_m", o.ground_clearance_m);
+  v("z_tolerance_m", o.z_tolerance_m);
+  v("yaw_step_deg", o.yaw_step_deg);
+  v("max_scan_points", o.max_scan_points);
+  v("max_hypotheses", o.max_hypotheses);
+  v("min_score", o.min_score);
+  v("distinct_translation_m", o.distinct_translation_m);
+  v("distinct_yaw_deg", o.distinct_yaw_deg);
+  v("refine_score_ratio", o.refine_score_ratio);
+  v("ambiguity_inlier_margin", o.ambiguity_inlier_margin);
+  v("judge_max_points", o.judge_max_points);
+}
+
+template <class V>
+void VisitFields(V& v, registration::GlobalMapOptions& o) {
+  v("cell_m", o.cell_m);
+  v("z_bin_m", o.z_bin_m);
+  v("levels", o.levels);
+  v("max_cells_million", o.max_cells_million);
+}
+
+template <class V>
 void VisitFields(V& v, LocalizationSection& c) {
   estimation::LocalizationOptions& o = c.options;
   v("initial_guess", c.initial_guess);
@@ -199,7 +224,11 @@ void VisitFields(V& v, LocalizationSection& c) {
   v("lost_after_scans", o.lost_after_scans);
   v("relocalize_retry_scans", o.relocalize_retry_scans);
   v.Section("icp", o.icp);
+  v("global_enabled", o.global_enabled);
+  v.Section("global", o.global);
+  v.Section("global_map", o.global_map);
 }
+
 
 template <class V>
 void VisitFields(V& v, OutputSection& output) {

@@ -67,13 +67,14 @@ HyloNode::HyloNode(ros::NodeHandle nh, ros::NodeHandle private_nh, const NodePar
 void HyloNode::LoadPriorMap() {
   const std::string guess =
       params_.initial_guess.empty() ? config_.initial_guess : params_.initial_guess;
-  if (guess.empty()) {
-    throw std::runtime_error("~prior_map needs ~initial_guess (\"x y z roll pitch yaw\", m and "
-                             "deg) or localization.initial_guess in " + params_.config_path);
+  if (guess.empty() && !config_.pipeline.localization.global_enabled) {
+    throw std::runtime_error("~prior_map without ~initial_guess (\"x y z roll pitch yaw\", m "
+                             "and deg) needs localization.global_enabled in " +
+                             params_.config_path);
   }
-  Eigen::Isometry3d T_world_imu;
+  std::optional<Eigen::Isometry3d> T_world_imu;  // none: the whole map is searched
   try {
-    T_world_imu = registration::ParsePoseGuess(guess);
+    if (!guess.empty()) T_world_imu = registration::ParsePoseGuess(guess);
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(std::string("initial guess: ") + e.what());
   }

@@ -17,7 +17,8 @@ struct NodeParams {
   std::string initial_guess;           ///< ~initial_guess: "x y z roll pitch yaw" (m, deg) or
                                        ///< 16 numbers (registration/pose_guess.h) of the base
                                        ///< (IMU) in the map frame; "" = the config's
-                                       ///< localization.initial_guess
+                                       ///< localization.initial_guess, and when that is
+                                       ///< empty too, a global start (the whole map searched)
   std::string costmap;                 ///< ~costmap: map_server YAML (hylo traversability)
   std::string save_map_path = "hylo_map.pcd";  ///< ~save_map_path: where ~save_map writes;
                                        ///< read again at every call (rosparam set works)

@@ -5,11 +5,13 @@
 namespace hylo::run {
 
 mapping::PriorMap LoadPriorMap(const std::string& path, const mapping::PriorMapOptions& options,
-                               const Eigen::Isometry3d& T_world_imu_guess,
+                               const std::optional<Eigen::Isometry3d>& T_world_imu_guess,
                                estimation::OdometryPipeline* pipeline) {
   mapping::PriorMap prior = mapping::BuildPriorMap(io::ReadCloud(path).positions, options, path);
   pipeline->SetPriorMap(prior.points_local);
-  pipeline->SetInitialGuess(mapping::PoseToLocal(T_world_imu_guess, prior.origin_world));
+  std::optional<Eigen::Isometry3d> guess_local;
+  if (T_world_imu_guess) guess_local = mapping::PoseToLocal(*T_world_imu_guess, prior.origin_world);
+  pipeline->SetInitialGuess(guess_local);
   return prior;
 }
 

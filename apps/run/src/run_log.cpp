@@ -97,11 +97,7 @@ RunResult RunLog(const RunRequest& request) {
   const bool localizing = !request.prior_map.empty();
   mapping::PriorMap prior;
   if (localizing) {
-    if (!request.guess_world_imu) {
-      throw std::runtime_error("localization needs an initial guess (--guess or "
-                               "localization.initial_guess)");
-    }
-    prior = LoadPriorMap(request.prior_map, config.prior_map, *request.guess_world_imu, &pipeline);
+    prior = LoadPriorMap(request.prior_map, config.prior_map, request.guess_world_imu, &pipeline);
   }
   const Eigen::Vector3d origin_world = prior.origin_world;
 

@@ -11,7 +11,10 @@
 //    scan's points that lie on a map surface (inlier ratio), their mean squared residual
 //    (fitness) and the number of plane matches; `lost_after_scans` bad scans in a row (or a
 //    user request) start a relocalization: the initializer runs around the current pose.
-//    Each event is recorded for the run's summary.
+//    Each event is recorded for the run's summary;
+//  - global start: without a guess, or when the guess is rejected, the global localizer
+//    (registration/global_localizer.h) searches the whole prior map for the static scans and
+//    its verdict (accepted, ambiguous, not found) is the start's.
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -19,6 +22,8 @@
 #include <string>
 
 #include "hylo/estimation/estimator.h"
+#include "hylo/registration/global_localizer.h"
+#include "hylo/registration/global_map.h"
 #include "hylo/registration/icp_initializer.h"
 
 namespace hylo::estimation {
@@ -30,6 +35,10 @@ struct LocalizationOptions {
                                   ///< from which scans are added to the map; -1 = never
                                   ///< (localization only), else >= 0
   registration::IcpInitializerOptions icp;  ///< start and relocalization
+  bool global_enabled = true;  ///< search the whole prior map when there is no guess or the
+                               ///< guess is rejected; false: the guess alone
+  registration::GlobalLocalizerOptions global;  ///< that search (its refinement uses `icp`)
+  registration::GlobalMapOptions global_map;    ///< the raster of the prior map it searches
 
   // --- health, computed on every scan from the update's residuals ---
   /// A registered point is an inlier when the plane the update matched it to (its nearest map

@@ -2,9 +2,9 @@
 // Localization in a prior map, for every back-end alike (Alamanos et al., Sec. III, and
 // localization.h): the ICP start from the static scans, the scans' health, loss and
 // relocalization, the hybrid start of map updates, the REP-105 odom frame and the events of a
-// run. The pipeline owns one when it is given an initial guess and asks it at three moments:
-// while starting (AddStaticScan, Start), after each update (Supervise), and before adding a
-// scan to the map (MapUpdateAllowed).
+// run. The pipeline owns one when it localizes (SetInitialGuess, with or without a guess) and
+// asks it at three moments: while starting (AddStaticScan, Start), after each update
+// (Supervise), and before adding a scan to the map (MapUpdateAllowed).
 
 #include <Eigen/Geometry>
 #include <cstddef>
@@ -21,6 +21,8 @@
 #include "hylo/estimation/initial_uncertainty.h"
 #include "hylo/estimation/localization.h"
 #include "hylo/estimation/scan_result.h"
+#include "hylo/registration/global_localizer.h"
+#include "hylo/registration/global_map.h"
 #include "hylo/registration/icp_initializer.h"
 #include "hylo/registration/neighbor_search.h"
 
@@ -28,8 +30,13 @@ namespace hylo::estimation {
 
 class LocalizationSupervisor {
  public:
+  /// `T_map_imu_guess`: the start guess, or none (a global start). `global_map`: the prior
+  /// map's raster for the global localizer, owned by the caller and outliving this; nullptr
+  /// when there is none, `global_map_unavailable` then says why.
   LocalizationSupervisor(const LocalizationOptions& options, const InitialUncertainty& uncertainty,
-                         const Eigen::Isometry3d& T_map_imu_guess);
+                         const std::optional<Eigen::Isometry3d>& T_map_imu_guess,
+                         const registration::GlobalMap* global_map,
+                         const std::string& global_map_unavailable);
 
   /// Relocalize around `T_map_imu_guess` with the next scan (e.g. ROS /initialpose); before
   /// the start it replaces the initial guess.
@@ -42,7 +49,9 @@ class LocalizationSupervisor {
   /// Registers the static scans to `map` and, when the initializer accepts a pose, starts
   /// `estimator` there. `start` carries time (the last static IMU stamp is used when there is
   /// one), biases, gravity and extrinsic; with `gravity_known` its roll and pitch (from the IMU
-  /// at rest) replace the guess's. False with *why when no pose was accepted.
+  /// at rest) replace the guess's. Without a guess, or when the guess is rejected, the global
+  /// localizer searches the whole map (global_enabled). False with *why when no pose was
+  /// accepted (rejected, ambiguous or not found: the reason says which).
   bool Start(NavState start, bool gravity_known, const registration::NeighborSearch& map,
              Estimator* estimator, std::string* why);
 
@@ -70,6 +79,11 @@ class LocalizationSupervisor {
     int64_t imu_end_t_ns = 0;  // last IMU stamp of the static scans
   };
 
+  // The global localizer on the static scans; `icp` receives the accepted pose's refinement.
+  // Returns its verdict, one line.
+  std::string StartGlobally(const NavState& start, bool gravity_known,
+                            const registration::NeighborSearch& map,
+                            registration::IcpInitializerResult* icp) const;
   bool Relocalize(const PointCloud& sweep_imu, const registration::NeighborSearch& map,
                   const Eigen::Isometry3d& T_map_imu_guess, Estimator* estimator);
   void AddEvent(LocalizationEvent::Kind kind, int64_t t_ns, const std::string& message,
@@ -79,7 +93,10 @@ class LocalizationSupervisor {
   LocalizationOptions options_;
   InitialUncertainty uncertainty_;
   registration::IcpInitializer icp_initializer_;
-  Eigen::Isometry3d guess_;  // T_map_imu at the start
+  registration::GlobalLocalizer global_localizer_;
+  const registration::GlobalMap* global_map_;  // not owned; nullptr: no global start
+  std::string global_map_unavailable_;         // why global_map_ is nullptr
+  std::optional<Eigen::Isometry3d> guess_;     // T_map_imu at the start; none: global start
   StaticScans static_;
   std::optional<Eigen::Isometry3d> relocalize_request_;  // T_map_imu
   int bad_scans_in_row_ = 0;

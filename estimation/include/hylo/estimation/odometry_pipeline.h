@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -69,16 +70,17 @@ class OdometryPipeline {
   void AddImu(const ImuSample& sample) { queue_.AddImu(sample); }
   void AddScan(LidarScan scan) { queue_.AddScan(std::move(scan)); }
 
-  /// Localization: the prior map (map frame, downsampled by the caller, e.g. BuildPriorMap)
-  /// and the guess of T_map_imu at the start (with an IMU only its yaw and position are used:
-  /// roll and pitch come from gravity). Both before the first scan; then odometry starts only
-  /// from a pose the ICP initializer accepted, or the pipeline fails with the reason.
+  /// Localization: the prior map (map frame, downsampled by the caller, e.g. BuildPriorMap;
+  /// its global-localization raster is built here) and the guess of T_map_imu at the start
+  /// (with an IMU only its yaw and position are used: roll and pitch come from gravity), or
+  /// std::nullopt to search the whole map. Both before the first scan; then odometry starts
+  /// only from a pose the ICP initializer accepted, or the pipeline fails with the reason.
   void SetPriorMap(const PointCloud& points_map);
-  void SetInitialGuess(const Eigen::Isometry3d& T_map_imu_guess);
+  void SetInitialGuess(const std::optional<Eigen::Isometry3d>& T_map_imu_guess);
   /// Relocalize around `T_map_imu_guess` with the next scan (e.g. ROS /initialpose). Before
   /// the start it replaces the initial guess. Needs a prior map.
   void RequestRelocalization(const Eigen::Isometry3d& T_map_imu_guess);
-  /// True when an initial guess was given (localization in a prior map).
+  /// True when SetInitialGuess was called (localization in a prior map).
   bool localizing() const { return supervisor_ != nullptr; }
   /// Start, loss, relocalization and hybrid events in time order.
   const std::vector<LocalizationEvent>& events() const;
@@ -121,6 +123,8 @@ class OdometryPipeline {
   mapping::MapManager map_;
   registration::PlaneMatcher matcher_;
   std::unique_ptr<LocalizationSupervisor> supervisor_;  // null in SLAM
+  std::unique_ptr<registration::GlobalMap> global_map_;  // the prior's raster; null: none
+  std::string global_map_unavailable_;                   // ... and why
   TwistEstimator twist_;
   Status status_ = Status::kInitializing;  // kLost is the supervisor's
   std::string message_;

@@ -4,6 +4,7 @@
 // and write a map of the run back in the map file's own (world) frame.
 
 #include <Eigen/Geometry>
+#include <optional>
 #include <string>
 
 #include "hylo/common/point_types.h"
@@ -13,11 +14,12 @@
 namespace hylo::run {
 
 /// Reads the PCD/PLY map at `path`, thins it with `options`, and starts `pipeline`'s
-/// localization in it from `T_world_imu_guess` (world = the map file's frame). Returns the map
+/// localization in it from `T_world_imu_guess` (world = the map file's frame; none: the
+/// global localizer searches the whole map). Returns the map
 /// (its origin_world turns every output back into world coordinates). Throws naming the file
 /// when it cannot be read or holds no point.
 mapping::PriorMap LoadPriorMap(const std::string& path, const mapping::PriorMapOptions& options,
-                               const Eigen::Isometry3d& T_world_imu_guess,
+                               const std::optional<Eigen::Isometry3d>& T_world_imu_guess,
                                estimation::OdometryPipeline* pipeline);
 
 /// Writes `points_map` (map frame, local to `origin_world`) to `path` in world coordinates

@@ -35,7 +35,7 @@ struct RunRequest {
   config::RunConfig config;        ///< the run's configuration (backend, sensors, ...)
   std::string prior_map;           ///< PCD/PLY prior map; empty = SLAM from scratch
   std::optional<Eigen::Isometry3d> guess_world_imu;  ///< T_world_imu guess at the start;
-                                   ///< required with prior_map
+                                   ///< none with prior_map: a global start
   double c2c_max_distance_m = 0.5; ///< outlier threshold of the cloud-to-cloud metric, m
   std::string out_dir;             ///< created if missing
   std::string label = "run";       ///< progress label
