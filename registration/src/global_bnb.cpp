@@ -3,6 +3,8 @@
 // the worst kept result).
 #include "global_bnb.h"
 
+#include <time.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -142,6 +144,12 @@ class Search {
 };
 
 }  // namespace
+
+double ThreadCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 DiscreteScan Discretize(const PointCloud& points_ground, const GlobalMapOptions& map_options,
                         double yaw_step_rad) {

@@ -35,6 +35,10 @@ struct DiscreteScan {
 DiscreteScan Discretize(const PointCloud& points_ground, const GlobalMapOptions& map_options,
                         double yaw_step_rad);
 
+/// CPU time of the calling thread, s: the localizer's figures are per core, not inflated by
+/// other work on a shared machine.
+double ThreadCpuSeconds();
+
 /// One pose of the search: yaw sample, the vehicle's cell, its score in voxels.
 struct BnbCandidate {
   int yaw_index = 0;

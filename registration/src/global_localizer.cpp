@@ -2,8 +2,6 @@
 // and judgement by the ICP initializer's gates (global_localizer.h).
 #include "hylo/registration/global_localizer.h"
 
-#include <time.h>
-
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -24,12 +22,6 @@ constexpr double kDegToRad = M_PI / 180.0;
 constexpr double kGroundRadiusM = 4.0;
 constexpr double kGroundQuantile = 0.25;
 constexpr std::size_t kMinGroundPoints = 20;
-
-double CpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 // The levelled scan relative to the vehicle's ground, filtered for the search. False when no
 // ground is seen near the vehicle.
@@ -136,7 +128,7 @@ std::vector<GlobalHypothesis> GlobalLocalizer::Search(const PointCloud& scan_imu
                                                       const Eigen::Matrix3d& R_level_imu,
                                                       const GlobalMap& global_map,
                                                       GlobalSearchStats* stats) const {
-  const double start_s = CpuSeconds();
+  const double start_s = internal::ThreadCpuSeconds();
   GlobalSearchStats local;
   GlobalSearchStats& s = stats != nullptr ? *stats : local;
   s = GlobalSearchStats();
@@ -147,7 +139,7 @@ std::vector<GlobalHypothesis> GlobalLocalizer::Search(const PointCloud& scan_imu
   if (!PrepareScan(scan_imu, R_level_imu, options_, map_options.cell_m, &points,
                    &s.sensor_height_m) ||
       points.size() < 10) {
-    s.search_s = CpuSeconds() - start_s;
+    s.search_s = internal::ThreadCpuSeconds() - start_s;
     return hypotheses;
   }
   const double yaw_step = options_.yaw_step_deg > 0.0 ? options_.yaw_step_deg * kDegToRad
@@ -170,7 +162,7 @@ std::vector<GlobalHypothesis> GlobalLocalizer::Search(const PointCloud& scan_imu
     h.score = static_cast<double>(c.score) / scan.total_voxels;
     hypotheses.push_back(h);
   }
-  s.search_s = CpuSeconds() - start_s;
+  s.search_s = internal::ThreadCpuSeconds() - start_s;
   return hypotheses;
 }
 

@@ -1,11 +1,10 @@
 // Global localization, step 2: the search's hypotheses refined by the ICP initializer and
 // judged (global_localizer.h): accepted only when one place passes the gates and no other
 // comes close.
-#include <time.h>
-
 #include <algorithm>
 #include <sstream>
 
+#include "global_bnb.h"
 #include "hylo/registration/global_localizer.h"
 #include "hylo/registration/voxel_filter.h"
 #include "icp_initializer_internal.h"
@@ -14,12 +13,6 @@ namespace hylo::registration {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
-
-double CpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 bool Distinct(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
               const GlobalLocalizerOptions& options) {
@@ -54,15 +47,15 @@ GlobalLocalizationResult GlobalLocalizer::Localize(const PointCloud& scan_imu,
                                                    const Eigen::Matrix3d& R_level_imu,
                                                    const GlobalMap& global_map,
                                                    const NeighborSearch& map) const {
-  const double start_s = CpuSeconds();
+  const double start_s = internal::ThreadCpuSeconds();
   GlobalLocalizationResult result;
   result.hypotheses = Search(scan_imu, R_level_imu, global_map, &result.stats);
   double refine_start_s = -1.0;  // set when the refinements begin
   const auto finish = [&](GlobalStatus status, const std::string& message) {
-    if (refine_start_s >= 0.0) result.refine_s = CpuSeconds() - refine_start_s;
+    if (refine_start_s >= 0.0) result.refine_s = internal::ThreadCpuSeconds() - refine_start_s;
     result.status = status;
     result.message = ToString(status) + ": " + message;
-    result.elapsed_s = CpuSeconds() - start_s;
+    result.elapsed_s = internal::ThreadCpuSeconds() - start_s;
     return result;
   };
   if (global_map.empty() || map.Size() == 0) return finish(GlobalStatus::kBadInput, "empty map");
@@ -73,7 +66,7 @@ GlobalLocalizationResult GlobalLocalizer::Localize(const PointCloud& scan_imu,
     return finish(GlobalStatus::kNotFound, "no place explains the scan");
   }
 
-  refine_start_s = CpuSeconds();
+  refine_start_s = internal::ThreadCpuSeconds();
   const IcpInitializer judge(icp_judge_);
   // Every hypothesis refines the same cloud: thin it once, not once per hypothesis (the
   // initializer's own voxel filter then finds it already thinned).

@@ -133,30 +133,6 @@ GlobalMap GlobalMap::Build(const PointCloud& points_map, const GlobalMapOptions&
   return map;
 }
 
-GlobalMap GlobalMap::FromParts(const Layout& layout, std::vector<Level> levels) {
-  std::string why;
-  if (!layout.options.IsValid(&why)) throw std::invalid_argument("global map options: " + why);
-  if (layout.width <= 0 || layout.height <= 0) {
-    throw std::invalid_argument("global map: empty raster");
-  }
-  if (static_cast<int>(levels.size()) != layout.options.levels) {
-    throw std::invalid_argument("global map: " + std::to_string(levels.size()) +
-                                " levels, the layout says " +
-                                std::to_string(layout.options.levels));
-  }
-  const std::size_t cells = static_cast<std::size_t>(layout.width) * layout.height;
-  for (const Level& level : levels) {
-    if (level.occupancy.size() != cells || level.ground_min_m.size() != cells ||
-        level.ground_max_m.size() != cells) {
-      throw std::invalid_argument("global map: a level does not hold width x height cells");
-    }
-  }
-  GlobalMap map;
-  map.layout_ = layout;
-  map.levels_ = std::move(levels);
-  return map;
-}
-
 std::size_t GlobalMap::MemoryBytes() const {
   std::size_t bytes = sizeof(*this);
   for (const Level& level : levels_) {

@@ -40,7 +40,7 @@ class GlobalMap {
     std::vector<float> ground_max_m;  ///< highest cell ground over the block, m (-inf: none)
   };
 
-  /// Where the raster lies and what it was built from (also the file header's content).
+  /// Where the raster lies and what it was built from.
   struct Layout {
     GlobalMapOptions options;
     float origin_x_m = 0.f;  ///< local x of the raster's corner (cell 0 starts here), m
@@ -58,10 +58,6 @@ class GlobalMap {
   /// when there is no finite point, the options are invalid or the raster would exceed
   /// options.max_cells_million.
   static GlobalMap Build(const PointCloud& points_map, const GlobalMapOptions& options);
-
-  /// A map read back from a file: checks that the level sizes match the layout; throws
-  /// std::invalid_argument naming the mismatch.
-  static GlobalMap FromParts(const Layout& layout, std::vector<Level> levels);
 
   const Layout& layout() const { return layout_; }
   const GlobalMapOptions& options() const { return layout_.options; }
