@@ -148,11 +148,13 @@ void LocalizationSupervisor::Supervise(const std::function<PointCloud()>& sweep_
   }
   std::optional<Eigen::Isometry3d> guess;
   guess.swap(relocalize_request_);
+  // A user's request is judged as given; only the search of a lost vehicle may go global.
+  const bool requested = guess.has_value();
   if (!guess && lost_ && scans_until_retry_-- <= 0) {
     guess = ToIsometry(estimator->state().T_map_imu());  // search around where we are
   }
   if (!guess) return;
-  if (Relocalize(sweep_imu(), map, *guess, estimator)) {
+  if (Relocalize(sweep_imu(), map, *guess, /*allow_global=*/!requested, estimator)) {
     result->state = estimator->state();
     result->pose_covariance = estimator->PoseCovariance();
   } else if (lost_) {
@@ -163,13 +165,22 @@ void LocalizationSupervisor::Supervise(const std::function<PointCloud()>& sweep_
 bool LocalizationSupervisor::Relocalize(const PointCloud& sweep_imu,
                                         const registration::NeighborSearch& map,
                                         const Eigen::Isometry3d& T_map_imu_guess,
-                                        Estimator* estimator) {
+                                        bool allow_global, Estimator* estimator) {
   const NavState before = estimator->state();
   ++scans_initializer_;
-  const registration::IcpInitializerResult icp =
+  registration::IcpInitializerResult icp =
       icp_initializer_.Initialize(sweep_imu, map, T_map_imu_guess);
+  std::string verdict = icp.message;
+  if (!icp.accepted && allow_global && options_.global_enabled && global_map_ != nullptr) {
+    // Not near the last pose (kidnapped, or lost for long): search the whole map, levelled
+    // by the estimate's roll and pitch, which the IMU keeps while the position is lost.
+    const registration::GlobalLocalizationResult r = global_localizer_.Localize(
+        sweep_imu, registration::LevellingRotation(before.R_map_imu.Matrix()), *global_map_, map);
+    if (r.status == registration::GlobalStatus::kAccepted) icp = r.refinement;
+    verdict = "around the last pose: " + verdict + "; global localization " + r.message;
+  }
   if (!icp.accepted) {
-    AddEvent(LocalizationEvent::Kind::kRelocalizationFailed, before.t_ns, icp.message,
+    AddEvent(LocalizationEvent::Kind::kRelocalizationFailed, before.t_ns, verdict,
              ToIsometry(before.T_map_imu()), &icp);
     return false;
   }
@@ -184,7 +195,7 @@ bool LocalizationSupervisor::Relocalize(const PointCloud& sweep_imu,
   T_map_odom_ = x.T_map_imu() * T_odom_imu_before.Inverse();
   bad_scans_in_row_ = 0;
   lost_ = false;
-  AddEvent(LocalizationEvent::Kind::kRelocalized, x.t_ns, icp.message, icp.T_map_imu, &icp);
+  AddEvent(LocalizationEvent::Kind::kRelocalized, x.t_ns, verdict, icp.T_map_imu, &icp);
   return true;
 }
 

@@ -326,6 +326,84 @@ INSTANTIATE_TEST_SUITE_P(GuessOrNot, SimGlobalStart, ::testing::Values(false, tr
                            return std::string(info.param ? "FarGuess" : "NoGuess");
                          });
 
+// Kidnapped: session B with 15 s cut out and the rest moved back in time, so the vehicle
+// jumps to where it was 15 s later while the IMU says nothing happened. The supervisor loses
+// it, fails around the last pose, finds it over the whole map, and tracking resumes.
+TEST(SimRelocalization, AKidnappedVehicleIsFoundAgainOverTheWholeMap) {
+  struct Kidnapped : LocalizationSink {
+    using LocalizationSink::LocalizationSink;
+    int64_t cut_from_ns = 0, cut_to_ns = 0;
+    // False for data inside the cut; moves later stamps back by the cut's length.
+    bool Keep(int64_t* t_ns) const {
+      if (*t_ns >= cut_from_ns && *t_ns < cut_to_ns) return false;
+      if (*t_ns >= cut_to_ns) *t_ns -= cut_to_ns - cut_from_ns;
+      return true;
+    }
+    void OnImu(const ImuSample& s) override {
+      ImuSample moved = s;
+      if (Keep(&moved.t_ns)) LocalizationSink::OnImu(moved);
+    }
+    void OnScan(const LidarScan& s) override {
+      LidarScan moved = s;
+      if (Keep(&moved.t_ns)) LocalizationSink::OnScan(moved);
+    }
+    void OnTruth(const sim::TruthSample& t) override {
+      sim::TruthSample moved = t;
+      if (Keep(&moved.t_ns)) LocalizationSink::OnTruth(moved);
+    }
+  };
+  sim::SimulationOptions sim_options = SimOptions();
+  sim_options.duration_b_s = 45.0;
+  Kidnapped sink(LocalizationOptions(Estimator::Backend::kIeskf, -1.0), 0.1f);
+  sink.cut_from_ns = sim_options.start_b_ns + 12'000'000'000;
+  sink.cut_to_ns = sim_options.start_b_ns + 27'000'000'000;
+  sink.pipeline.SetPriorMap(SharedPrior().points_map);
+  sink.pipeline.SetInitialGuess(PerturbedStart(SessionStartTruth(sim_options), 0.5, 0.5, 5.0));
+  sim::SessionSimulator(sim_options, SharedSite(), sim::SessionId::kB).Run(&sink);
+  sink.Finish();
+  const auto& pipeline = sink.pipeline;
+  ASSERT_NE(pipeline.status(), estimation::OdometryPipeline::Status::kFailed)
+      << pipeline.message();
+
+  // The jump, in the prior's frame: how far the vehicle was moved.
+  const Eigen::Isometry3d T_map_site = SharedPrior().T_site_map.inverse();
+  Eigen::Isometry3d before_cut, after_cut;
+  ASSERT_TRUE(evaluation::InterpolatePose(sink.truth, sink.cut_from_ns - 100'000'000, &before_cut));
+  ASSERT_TRUE(evaluation::InterpolatePose(sink.truth, sink.cut_from_ns + 100'000'000, &after_cut));
+  const double jump_m = (after_cut.translation() - before_cut.translation()).norm();
+  EXPECT_GT(jump_m, 5.0) << "the cut must move the vehicle beyond the local search";
+
+  const LocalizationEvent* relocalized = nullptr;
+  for (const LocalizationEvent& e : pipeline.events()) {
+    if (e.kind == LocalizationEvent::Kind::kRelocalized && e.t_ns >= sink.cut_from_ns) {
+      relocalized = &e;
+      break;
+    }
+  }
+  ASSERT_TRUE(HasEvent(pipeline, LocalizationEvent::Kind::kLost));
+  ASSERT_NE(relocalized, nullptr) << "never found again";
+  EXPECT_NE(relocalized->message.find("global localization accepted"), std::string::npos)
+      << relocalized->message;
+  const double recovery_s = static_cast<double>(relocalized->t_ns - sink.cut_from_ns) * 1e-9;
+  std::printf("kidnapped by %.1f m: found again %.2f s after the jump\n", jump_m, recovery_s);
+  EXPECT_LE(recovery_s, 5.0);
+
+  // From a second after the recovery on, the live poses are the truth's (no alignment).
+  double worst_m = 0.0;
+  std::size_t compared = 0;
+  for (const estimation::ScanResult& r : sink.results) {
+    if (r.t_ns < relocalized->t_ns + 1'000'000'000) continue;
+    Eigen::Isometry3d T_site_imu;
+    if (!evaluation::InterpolatePose(sink.truth, r.t_ns, &T_site_imu)) continue;
+    const Eigen::Vector3d error = Eigen::Isometry3d(r.state.T_map_imu().Matrix()).translation() -
+                                  (T_map_site * T_site_imu).translation();
+    worst_m = std::max(worst_m, error.norm());
+    ++compared;
+  }
+  EXPECT_GT(compared, 50u);
+  EXPECT_LT(worst_m, 0.1);
+}
+
 TEST(SimLocalizationBadInput, AnEmptyPriorMapIsAClearError) {
   LocalizationSink sink(LocalizationOptions(Estimator::Backend::kIeskf, -1.0), 0.1f);
   sink.pipeline.SetPriorMap({});

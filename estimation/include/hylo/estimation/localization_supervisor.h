@@ -57,9 +57,11 @@ class LocalizationSupervisor {
 
   // --- every scan after the start ---
   /// Judges the scan by `result->health` (from its update), counts bad scans, declares the
-  /// vehicle lost, and relocalizes on request or while lost; an accepted relocalization starts
-  /// `estimator` again at the initializer's pose, which `result` then carries. `sweep_imu`
-  /// gives the whole scan in the IMU frame at its end (asked for only to relocalize).
+  /// vehicle lost, and relocalizes on request (around the requested pose) or while lost
+  /// (around the current pose, then over the whole map: a kidnapped vehicle is found again);
+  /// an accepted relocalization starts `estimator` again at the accepted pose, which `result`
+  /// then carries. `sweep_imu` gives the whole scan in the IMU frame at its end (asked for
+  /// only to relocalize).
   void Supervise(const std::function<PointCloud()>& sweep_imu,
                  const registration::NeighborSearch& map, Estimator* estimator, ScanResult* result);
   /// Hybrid mode: whether the scan of `result` may extend the map.
@@ -84,8 +86,11 @@ class LocalizationSupervisor {
   std::string StartGlobally(const NavState& start, bool gravity_known,
                             const registration::NeighborSearch& map,
                             registration::IcpInitializerResult* icp) const;
+  // The initializer around `T_map_imu_guess`; when it fails and `allow_global`, the global
+  // localizer on the sweep.
   bool Relocalize(const PointCloud& sweep_imu, const registration::NeighborSearch& map,
-                  const Eigen::Isometry3d& T_map_imu_guess, Estimator* estimator);
+                  const Eigen::Isometry3d& T_map_imu_guess, bool allow_global,
+                  Estimator* estimator);
   void AddEvent(LocalizationEvent::Kind kind, int64_t t_ns, const std::string& message,
                 const Eigen::Isometry3d& T_map_imu,
                 const registration::IcpInitializerResult* icp = nullptr);
