@@ -144,7 +144,7 @@ void RunGround(GroundArgs& args) {
   const double seconds = progress->ElapsedSeconds();
   progress.reset();
   if (!result.ok) throw std::runtime_error(args.in_path + ": " + result.message);
-  std::fprintf(stderr, "%s: %s\n", terrain::ToString(result.method), result.message.c_str());
+  std::fprintf(stderr, "%s: %s\n", terrain::ToString(result.method).c_str(), result.message.c_str());
   io::WriteCloud(args.ground_path, Select(cloud, result, terrain::GroundLabel::kGround));
   io::WriteCloud(args.objects_path, Select(cloud, result, terrain::GroundLabel::kObject));
   std::fprintf(stderr, "wrote %s and %s\n", args.ground_path.c_str(), args.objects_path.c_str());

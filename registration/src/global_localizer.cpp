@@ -4,13 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <utility>
 
 #include "global_bnb.h"
 #include "hylo/common/check.h"
+#include "hylo/common/enum_names.h"
 #include "hylo/common/option_checks.h"
 #include "hylo/registration/voxel_filter.h"
-#include "icp_initializer_internal.h"
 
 namespace hylo::registration {
 namespace {
@@ -98,13 +98,12 @@ bool GlobalLocalizerOptions::IsValid(std::string* why) const {
 }
 
 std::string ToString(GlobalStatus status) {
-  switch (status) {
-    case GlobalStatus::kAccepted: return "accepted";
-    case GlobalStatus::kAmbiguous: return "ambiguous";
-    case GlobalStatus::kNotFound: return "not_found";
-    case GlobalStatus::kBadInput: return "bad_input";
-  }
-  return "unknown";
+  static constexpr std::pair<GlobalStatus, const char*> kNames[] = {
+      {GlobalStatus::kAccepted, "accepted"},
+      {GlobalStatus::kAmbiguous, "ambiguous"},
+      {GlobalStatus::kNotFound, "not_found"},
+      {GlobalStatus::kBadInput, "bad_input"}};
+  return NameOf(kNames, status);
 }
 
 Eigen::Matrix3d LevellingRotation(const Eigen::Matrix3d& R_map_imu) {

@@ -1,5 +1,6 @@
 #include "hylo/terrain/ground_filter.h"
 
+#include "hylo/common/enum_names.h"
 #include "hylo/common/option_checks.h"
 
 #include <stdexcept>
@@ -76,45 +77,25 @@ class BackEnd : public GroundFilter {
 
 }  // namespace
 
-const char* ToString(GroundMethod method) {
-  switch (method) {
-    case GroundMethod::kCsf:
-      return "csf";
-    case GroundMethod::kSmrf:
-      return "smrf";
-  }
-  return "unknown";
-}
+namespace {
+constexpr std::pair<GroundMethod, const char*> kGroundMethodNames[] = {
+    {GroundMethod::kCsf, "csf"}, {GroundMethod::kSmrf, "smrf"}};
+constexpr std::pair<ClothHoleFill, const char*> kHoleFillNames[] = {
+    {ClothHoleFill::kNeighbourMean, "mean"},
+    {ClothHoleFill::kNearest, "nearest"},
+    {ClothHoleFill::kReferenceScanline, "reference"}};
+}  // namespace
+
+std::string ToString(GroundMethod method) { return NameOf(kGroundMethodNames, method); }
 
 bool ParseGroundMethod(const std::string& name, GroundMethod* method) {
-  for (const GroundMethod m : {GroundMethod::kCsf, GroundMethod::kSmrf}) {
-    if (name != ToString(m)) continue;
-    *method = m;
-    return true;
-  }
-  return false;
+  return ValueOf(kGroundMethodNames, name, method);
 }
 
-const char* ToString(ClothHoleFill fill) {
-  switch (fill) {
-    case ClothHoleFill::kNeighbourMean:
-      return "mean";
-    case ClothHoleFill::kNearest:
-      return "nearest";
-    case ClothHoleFill::kReferenceScanline:
-      return "reference";
-  }
-  return "unknown";
-}
+std::string ToString(ClothHoleFill fill) { return NameOf(kHoleFillNames, fill); }
 
 bool ParseClothHoleFill(const std::string& name, ClothHoleFill* fill) {
-  for (const ClothHoleFill f : {ClothHoleFill::kNeighbourMean, ClothHoleFill::kNearest,
-                                ClothHoleFill::kReferenceScanline}) {
-    if (name != ToString(f)) continue;
-    *fill = f;
-    return true;
-  }
-  return false;
+  return ValueOf(kHoleFillNames, name, fill);
 }
 
 SmrfOptions LeaveOneOutSmrfOptions() {

@@ -24,12 +24,12 @@ enum class GroundMethod {
 };
 
 /// "csf" / "smrf".
-const char* ToString(GroundMethod method);
+std::string ToString(GroundMethod method);
 /// Parses "csf" / "smrf"; false (and *method untouched) for anything else.
 bool ParseGroundMethod(const std::string& name, GroundMethod* method);
 
 /// "mean" / "nearest" / "reference": the names `hylo ground --hole-fill` and the YAML take.
-const char* ToString(ClothHoleFill fill);
+std::string ToString(ClothHoleFill fill);
 /// Parses those names; false (and *fill untouched) for anything else.
 bool ParseClothHoleFill(const std::string& name, ClothHoleFill* fill);
 
