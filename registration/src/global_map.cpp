@@ -21,15 +21,6 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr double kFloorMarginM = 1.0;
 constexpr double kFloorQuantile = 0.001;
 
-PointCloud FinitePoints(const PointCloud& points) {
-  PointCloud finite;
-  finite.reserve(points.size());
-  for (const Eigen::Vector3f& p : points) {
-    if (p.allFinite()) finite.push_back(p);
-  }
-  return finite;
-}
-
 float FloorZ(const PointCloud& points) {
   std::vector<float> z;
   z.reserve(points.size());

@@ -24,15 +24,6 @@ struct Candidate {
   bool passes = false;
 };
 
-PointCloud FinitePoints(const PointCloud& cloud) {
-  PointCloud finite;
-  finite.reserve(cloud.size());
-  for (const Eigen::Vector3f& p : cloud) {
-    if (p.allFinite()) finite.push_back(p);
-  }
-  return finite;
-}
-
 // Every k-th point so that at most `max_points` remain: after a voxel filter the points are
 // already spread evenly, and a stride keeps that spread.
 PointCloud Decimate(const PointCloud& cloud, int max_points) {

@@ -20,4 +20,14 @@ struct ScanPoint {
 /// near zero by an origin offset, so float resolution is sub-millimetre over kilometres.
 using PointCloud = std::vector<Eigen::Vector3f>;
 
+/// The points of `cloud` with every coordinate finite, in order.
+inline PointCloud FinitePoints(const PointCloud& cloud) {
+  PointCloud finite;
+  finite.reserve(cloud.size());
+  for (const Eigen::Vector3f& p : cloud) {
+    if (p.allFinite()) finite.push_back(p);
+  }
+  return finite;
+}
+
 }  // namespace hylo
