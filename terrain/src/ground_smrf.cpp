@@ -114,7 +114,7 @@ SmrfSurface ComputeSmrfSurface(const PointCloud& points_local,
   // Only when every cell with points was flagged (a handful of points): the minimum surface
   // itself is then the best guess at the ground.
   if (!AnyKnown(surface.dem)) surface.dem = minimum;
-  smrf::InpaintMembrane(&surface.dem);
+  smrf::InpaintTangentPlanes(&surface.dem);
   surface.slope = smrf::SlopeOf(surface.dem);
   return surface;
 }

@@ -1,6 +1,6 @@
-// SMRF's parts on small grids: the octagon morphology against brute force, the membrane
-// inpainting against surfaces it must reproduce, the progressive filter on shapes whose
-// answer is known, and the raster's interpolation.
+// SMRF's parts on small grids: the octagon morphology against brute force, the membrane and
+// tangent-plane inpainting against surfaces they must reproduce, the progressive filter on shapes
+// whose answer is known, and the raster's interpolation.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -184,6 +184,66 @@ TEST(SmrfInpaint, OneKnownCellFillsEverythingAndNoneIsAnError) {
   for (const float z : raster.z) EXPECT_NEAR(z, 2.5f, 1e-5f);
   Raster empty = CoveringRaster({0, 0}, {3, 3}, 1.0);
   EXPECT_THROW(InpaintMembrane(&empty), InternalError);
+}
+
+TEST(SmrfInpaint, TangentPlanesReproduceAPlaneAndKeepKnownCells) {
+  Raster raster = CoveringRaster({0, 0}, {79.5, 49.5}, 1.0);
+  for (int row = 0; row < raster.rows; ++row) {
+    for (int col = 0; col < raster.cols; ++col) {
+      const bool gap = col >= 20 && col < 50 && row >= 10 && row < 35;
+      raster.z[raster.Index(col, row)] = gap ? kNan : 0.3f * col - 0.1f * row + 5.f;
+    }
+  }
+  const Raster known = raster;
+  EXPECT_EQ(InpaintTangentPlanes(&raster), 30u * 25u);
+  double worst = 0;
+  for (int row = 0; row < raster.rows; ++row) {
+    for (int col = 0; col < raster.cols; ++col) {
+      const std::size_t i = raster.Index(col, row);
+      if (!std::isnan(known.z[i])) {
+        ASSERT_EQ(raster.z[i], known.z[i]);
+      }
+      worst = std::max(worst, std::abs(raster.z[i] - (0.3 * col - 0.1 * row + 5.0)));
+    }
+  }
+  EXPECT_LT(worst, 0.02);
+}
+
+// A ridge (an embankment, a hilltop) whose top cells are unknown: the membrane cannot rise
+// above the gap's rim, the tangent planes continue the flanks towards the top.
+TEST(SmrfInpaint, TangentPlanesRebuildARidgeTheMembraneFlattens) {
+  const auto ridge = [](int col) { return 10.0 - 0.5 * std::abs(col - 40); };
+  Raster raster = CoveringRaster({0, 0}, {80.5, 30.5}, 1.0);
+  for (int row = 0; row < raster.rows; ++row) {
+    for (int col = 0; col < raster.cols; ++col) {
+      const bool gap = std::abs(col - 40) < 8;
+      raster.z[raster.Index(col, row)] = gap ? kNan : static_cast<float>(ridge(col));
+    }
+  }
+  Raster membrane = raster;
+  InpaintMembrane(&membrane);
+  InpaintTangentPlanes(&raster);
+  const float rim = static_cast<float>(ridge(32));
+  // The top is 4 m above the rim. The flanks' gradients at the rim are read off the
+  // membrane, which is flat inside the gap, so they are underestimated there and the planes
+  // bring back most of the height, never more than there is.
+  for (int row = 0; row < raster.rows; ++row) {
+    for (const int col : {36, 40}) {
+      const float z = raster.z[raster.Index(col, row)];
+      EXPECT_LE(membrane.z[membrane.Index(col, row)], rim + 1e-3f);
+      EXPECT_GT(z, rim + 0.55 * (ridge(col) - rim)) << "col " << col << " row " << row;
+      EXPECT_LT(z, ridge(col) + 0.05) << "col " << col << " row " << row;
+    }
+  }
+}
+
+TEST(SmrfInpaint, TangentPlanesOfOneKnownCellAreFlatAndNoneIsAnError) {
+  Raster raster = CoveringRaster({0, 0}, {9.5, 6.5}, 1.0);
+  raster.z[raster.Index(3, 4)] = 2.5f;
+  InpaintTangentPlanes(&raster);
+  for (const float z : raster.z) EXPECT_NEAR(z, 2.5f, 1e-5f);
+  Raster empty = CoveringRaster({0, 0}, {3, 3}, 1.0);
+  EXPECT_THROW(InpaintTangentPlanes(&empty), InternalError);
 }
 
 TEST(SmrfRaster, MinimumSurfaceAndBilinearSample) {

@@ -55,6 +55,11 @@ double CoveringCellCount(const Eigen::Vector2d& min_xy, const Eigen::Vector2d& m
 /// point stay NaN. Returns how many cells got a point.
 std::size_t FillMinimumSurface(const PointCloud& points, Raster* raster);
 
+/// The gradient of `dem` at cell (col, row) in rise per cell along x and y: central
+/// differences, one-sided at the border, zero along an axis of one cell. The cell and its four
+/// neighbours must be known.
+Eigen::Vector2d GradientPerCell(const Raster& dem, int col, int row);
+
 /// Magnitude of the gradient (rise over run) by central differences, one-sided at the border;
 /// `dem` must be fully known. The result has dem's geometry.
 Raster SlopeOf(const Raster& dem);
