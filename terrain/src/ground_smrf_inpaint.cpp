@@ -89,30 +89,42 @@ typename Grid<kChannels>::Cell Prolong(const Grid<kChannels>& coarse, int col, i
   return out;
 }
 
-// Over-relaxed Gauss-Seidel on the Laplace equation over the unknown cells, row-major.
+// Over-relaxed Gauss-Seidel on the Laplace equation over the unknown cells, row-major. The
+// unknown cells are listed once with the neighbours they have, so a sweep touches only them.
 template <int kChannels>
 void Relax(const std::vector<uint8_t>& known, Grid<kChannels>* grid) {
+  enum : uint8_t { kLeft = 1, kRight = 2, kBelow = 4, kAbove = 8 };
+  struct Unknown {
+    std::size_t index;
+    uint8_t neighbours;
+  };
   const int cols = grid->cols, rows = grid->rows;
+  std::vector<Unknown> unknown;
+  for (int row = 0; row < rows; ++row) {
+    for (int col = 0; col < cols; ++col) {
+      const std::size_t i = static_cast<std::size_t>(row) * cols + col;
+      if (known[i]) continue;
+      const uint8_t neighbours = (col > 0 ? kLeft : 0) | (col + 1 < cols ? kRight : 0) |
+                                 (row > 0 ? kBelow : 0) | (row + 1 < rows ? kAbove : 0);
+      if (neighbours != 0) unknown.push_back({i, neighbours});
+    }
+  }
   auto* z = grid->cells.data();
   for (int sweep = 0; sweep < kSweepsPerLevel; ++sweep) {
-    for (int row = 0; row < rows; ++row) {
-      for (int col = 0; col < cols; ++col) {
-        const std::size_t i = static_cast<std::size_t>(row) * cols + col;
-        if (known[i]) continue;
-        std::array<float, kChannels> sum{};
-        int count = 0;
-        const auto add = [&](std::size_t j) {
-          for (int k = 0; k < kChannels; ++k) sum[k] += z[j][k];
-          ++count;
-        };
-        if (col > 0) add(i - 1);
-        if (col + 1 < cols) add(i + 1);
-        if (row > 0) add(i - cols);
-        if (row + 1 < rows) add(i + cols);
-        if (count == 0) continue;
-        for (int k = 0; k < kChannels; ++k) {
-          z[i][k] += kOverRelaxation * (sum[k] / count - z[i][k]);
-        }
+    for (const Unknown& u : unknown) {
+      const std::size_t i = u.index;
+      std::array<float, kChannels> sum{};
+      int count = 0;
+      const auto add = [&](std::size_t j) {
+        for (int k = 0; k < kChannels; ++k) sum[k] += z[j][k];
+        ++count;
+      };
+      if (u.neighbours & kLeft) add(i - 1);
+      if (u.neighbours & kRight) add(i + 1);
+      if (u.neighbours & kBelow) add(i - cols);
+      if (u.neighbours & kAbove) add(i + cols);
+      for (int k = 0; k < kChannels; ++k) {
+        z[i][k] += kOverRelaxation * (sum[k] / count - z[i][k]);
       }
     }
   }
@@ -163,35 +175,34 @@ std::size_t InpaintMembrane(Raster* raster) {
 std::size_t InpaintTangentPlanes(Raster* raster) {
   HYLO_CHECK(raster != nullptr, "a raster");
   CheckFillable(*raster);
-  // The known cells' gradients, read off the membrane through them.
+  // The known cells' gradients, read off the membrane through them. The membrane is also the
+  // blend of the heights below: the fill weighs every channel alike.
   Raster membrane = *raster;
   InpaintMembrane(&membrane);
-  // Each known cell's plane z + g . (p - p_cell) is blended linearly in (z, g, g . p_cell),
+  // Each known cell's plane z + g . (p - p_cell) is blended linearly in (g, g . p_cell),
   // positions in cells from the grid's centre (small numbers, so float keeps them exact).
   const float centre_col = 0.5f * (raster->cols - 1), centre_row = 0.5f * (raster->rows - 1);
-  Grid<4> grid{raster->cols, raster->rows, {}};
-  grid.cells.resize(raster->Size());
+  Grid<3> slopes{raster->cols, raster->rows, {}};
+  slopes.cells.resize(raster->Size());
   for (int row = 0; row < raster->rows; ++row) {
     for (int col = 0; col < raster->cols; ++col) {
       const std::size_t i = raster->Index(col, row);
-      const float z = raster->z[i];
-      if (std::isnan(z)) {
-        grid.cells[i].fill(std::numeric_limits<float>::quiet_NaN());
+      if (std::isnan(raster->z[i])) {
+        slopes.cells[i].fill(std::numeric_limits<float>::quiet_NaN());
         continue;
       }
       const Eigen::Vector2d g = GradientPerCell(membrane, col, row);
       const float gx = static_cast<float>(g.x()), gy = static_cast<float>(g.y());
-      grid.cells[i] = {z, gx, gy, gx * (col - centre_col) + gy * (row - centre_row)};
+      slopes.cells[i] = {gx, gy, gx * (col - centre_col) + gy * (row - centre_row)};
     }
   }
-  const std::size_t filled = Fill(&grid);
+  const std::size_t filled = Fill(&slopes);
   for (int row = 0; row < raster->rows; ++row) {
     for (int col = 0; col < raster->cols; ++col) {
       const std::size_t i = raster->Index(col, row);
       if (!std::isnan(raster->z[i])) continue;
-      const Grid<4>::Cell& blend = grid.cells[i];
-      raster->z[i] =
-          blend[0] + blend[1] * (col - centre_col) + blend[2] * (row - centre_row) - blend[3];
+      const Grid<3>::Cell& g = slopes.cells[i];
+      raster->z[i] = membrane.z[i] + g[0] * (col - centre_col) + g[1] * (row - centre_row) - g[2];
     }
   }
   return filled;

@@ -83,18 +83,26 @@ Raster CoveringRaster(const Eigen::Vector2d& min_xy, const Eigen::Vector2d& max_
   return raster;
 }
 
-std::size_t FillMinimumSurface(const PointCloud& points, Raster* raster) {
+std::size_t FillMinimumSurface(const PointCloud& points, Raster* raster,
+                               std::vector<Eigen::Vector2f>* lowest_offset_m) {
+  if (lowest_offset_m) lowest_offset_m->assign(raster->Size(), Eigen::Vector2f::Zero());
   std::size_t filled = 0;
   for (const Eigen::Vector3f& p : points) {
     if (!p.allFinite()) continue;
     int col, row;
     raster->CellOf(p.x(), p.y(), &col, &row);
-    float& z = raster->z[raster->Index(col, row)];
+    const std::size_t i = raster->Index(col, row);
+    float& z = raster->z[i];
     if (std::isnan(z)) {
-      z = p.z();
       ++filled;
-    } else {
-      z = std::min(z, p.z());
+    } else if (z <= p.z()) {
+      continue;
+    }
+    z = p.z();
+    if (lowest_offset_m) {
+      const Eigen::Vector2d centre =
+          raster->origin_xy + raster->cell_m * Eigen::Vector2d(col + 0.5, row + 0.5);
+      (*lowest_offset_m)[i] = (p.head<2>().cast<double>() - centre).cast<float>();
     }
   }
   return filled;
