@@ -119,7 +119,7 @@ ClothFilterOptions LeaveOneOutCsfOptions() {
 
 GroundFilterOptions GroundFilterOptions::ForRobotMaps() {
   GroundFilterOptions options;
-  options.smrf.elevation_threshold_m = 0.15;
+  options.smrf.elevation_threshold_m = 0.10;
   return options;
 }
 
