@@ -77,6 +77,7 @@ io::Json StatsJson(const terrain::GroundFilterResult& r) {
     s["rows"] = r.smrf.grid_rows;
     s["empty_cells"] = r.smrf.num_empty_cells;
     s["object_cells"] = r.smrf.num_object_cells;
+    s["readmitted_cells"] = r.smrf.num_readmitted_cells;
     s["low_outlier_cells"] = r.smrf.num_low_outlier_cells;
   }
   return s;

@@ -1,10 +1,10 @@
 #include "hylo/terrain/ground_filter.h"
 
-#include "hylo/common/enum_names.h"
-#include "hylo/common/option_checks.h"
-
 #include <stdexcept>
 #include <utility>
+
+#include "hylo/common/enum_names.h"
+#include "hylo/common/option_checks.h"
 
 namespace hylo::terrain {
 namespace {
@@ -55,6 +55,7 @@ void CopyStats(const SmrfResult& smrf, GroundFilterResult* result) {
   s.num_empty_cells = smrf.num_empty_cells;
   s.num_low_outlier_cells = smrf.num_low_outlier_cells;
   s.num_object_cells = smrf.num_object_cells;
+  s.num_readmitted_cells = smrf.num_readmitted_cells;
 }
 
 template <class Options, GroundMethod kMethod>
@@ -103,7 +104,7 @@ SmrfOptions LeaveOneOutSmrfOptions() {
   options.cell_m = 1.0;
   options.slope = 0.1;
   options.max_window_m = 24.0;
-  options.elevation_threshold_m = 0.7;
+  options.elevation_threshold_m = 0.5;
   options.elevation_scaler = 1.25;
   return options;
 }
@@ -118,7 +119,7 @@ ClothFilterOptions LeaveOneOutCsfOptions() {
 
 GroundFilterOptions GroundFilterOptions::ForRobotMaps() {
   GroundFilterOptions options;
-  options.smrf.elevation_threshold_m = 0.15;
+  options.smrf.elevation_threshold_m = 0.10;
   return options;
 }
 

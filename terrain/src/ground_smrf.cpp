@@ -9,10 +9,11 @@
 #include <utility>
 
 #include "hylo/common/check.h"
+#include "hylo/common/local_origin.h"
 #include "hylo/common/option_checks.h"
+#include "hylo/terrain/ground_smrf_dem.h"
 #include "hylo/terrain/ground_smrf_inpaint.h"
 #include "hylo/terrain/ground_smrf_morphology.h"
-#include "hylo/common/local_origin.h"
 
 namespace hylo::terrain {
 namespace {
@@ -24,8 +25,7 @@ int CellsFor(double length_m, double cell_m) {
 }
 
 // Horizontal bounding box of the finite points; false when there is none.
-bool FiniteBounds(const PointCloud& points, Eigen::Vector2d* min_xy,
-                  Eigen::Vector2d* max_xy) {
+bool FiniteBounds(const PointCloud& points, Eigen::Vector2d* min_xy, Eigen::Vector2d* max_xy) {
   bool any = false;
   for (const Eigen::Vector3f& p : points) {
     if (!p.allFinite()) continue;
@@ -74,14 +74,16 @@ bool SmrfOptions::IsValid(std::string* why) const {
          (max_cells >= 1.0 || FailOption("max_cells", max_cells, "must be >= 1", why));
 }
 
-SmrfSurface ComputeSmrfSurface(const PointCloud& points_local,
-                               const SmrfOptions& options, const SmrfProgress& progress) {
+SmrfSurface ComputeSmrfSurface(const PointCloud& points_local, const SmrfOptions& options,
+                               const SmrfProgress& progress) {
   Eigen::Vector2d min_xy, max_xy;
   HYLO_CHECK(FiniteBounds(points_local, &min_xy, &max_xy), "at least one finite point");
   SmrfSurface surface;
   // Step 1: the minimum surface, its empty cells inpainted for the morphology.
   smrf::Raster minimum = smrf::CoveringRaster(min_xy, max_xy, options.cell_m);
-  surface.num_cells_with_points = smrf::FillMinimumSurface(points_local, &minimum);
+  std::vector<Eigen::Vector2f> lowest_offset_m;
+  surface.num_cells_with_points =
+      smrf::FillMinimumSurface(points_local, &minimum, &lowest_offset_m);
   smrf::Raster filled = minimum;
   smrf::InpaintMembrane(&filled);
   // Step 2. The paper only keeps low outliers out of the DEM; here they are also taken out of
@@ -103,18 +105,23 @@ SmrfSurface ComputeSmrfSurface(const PointCloud& points_local,
   surface.max_window_cells = CellsFor(options.max_window_m, options.cell_m);
   const std::vector<uint8_t> object =
       smrf::ProgressiveFilter(filled, options.slope, surface.max_window_cells, progress);
-  // Step 4: the provisional DEM from the cells that hold ground points. Cells that were empty
-  // stay unknown here too, so they are filled from ground cells only, never from a roof.
-  surface.dem = minimum;
   for (std::size_t i = 0; i < object.size(); ++i) {
     surface.num_low_outlier_cells += low[i];
     surface.num_object_cells += object[i] && !low[i];
-    if (low[i] || object[i]) surface.dem.z[i] = std::numeric_limits<float>::quiet_NaN();
   }
-  // Only when every cell with points was flagged (a handful of points): the minimum surface
-  // itself is then the best guess at the ground.
-  if (!AnyKnown(surface.dem)) surface.dem = minimum;
-  smrf::InpaintMembrane(&surface.dem);
+  // Step 4: the provisional DEM from the cells that hold ground points (ground_smrf_dem.h).
+  // Cells that were empty stay unknown here too, so they are filled from ground cells only,
+  // never from a roof.
+  smrf::DemInput dem_input;
+  dem_input.minimum = &minimum;
+  dem_input.lowest_offset_m = &lowest_offset_m;
+  dem_input.low_outlier = &low;
+  dem_input.object = &object;
+  dem_input.readmit_within_m = options.elevation_threshold_m;
+  smrf::Dem dem = smrf::BuildDem(dem_input);
+  surface.dem = std::move(dem.z);
+  surface.num_readmitted_cells = dem.num_readmitted_cells;
+  surface.dem_rounds = dem.rounds;
   surface.slope = smrf::SlopeOf(surface.dem);
   return surface;
 }
@@ -143,8 +150,8 @@ void ClassifySmrf(const PointCloud& points_local, const SmrfSurface& surface,
   }
 }
 
-SmrfResult FilterGroundSmrfLocal(const PointCloud& points_local,
-                                 const SmrfOptions& options, const SmrfProgress& progress) {
+SmrfResult FilterGroundSmrfLocal(const PointCloud& points_local, const SmrfOptions& options,
+                                 const SmrfProgress& progress) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   Eigen::Vector2d min_xy, max_xy;
@@ -170,11 +177,13 @@ SmrfResult FilterGroundSmrfLocal(const PointCloud& points_local,
   result.num_empty_cells = surface.dem.Size() - surface.num_cells_with_points;
   result.num_low_outlier_cells = surface.num_low_outlier_cells;
   result.num_object_cells = surface.num_object_cells;
+  result.num_readmitted_cells = surface.num_readmitted_cells;
   std::ostringstream os;
   os << result.num_ground << " ground, " << result.num_objects << " objects, grid "
      << result.grid_cols << "x" << result.grid_rows << " of " << options.cell_m << " m, "
-     << surface.max_window_cells << " openings, " << result.num_object_cells << " object and "
-     << result.num_low_outlier_cells << " low-outlier cells";
+     << surface.max_window_cells << " openings, " << result.num_object_cells << " object ("
+     << result.num_readmitted_cells << " re-admitted) and " << result.num_low_outlier_cells
+     << " low-outlier cells, " << surface.dem_rounds << " DEM rounds";
   result.message = os.str();
   return result;
 }

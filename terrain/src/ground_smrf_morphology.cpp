@@ -123,32 +123,72 @@ void FilterDownLines(int dc, int r, Work* work) {
 // pass outside the grid (the offset (0, 2) is one step along each diagonal, through (1, 1)),
 // and the row-wise passes leave a margin of r cells unfiltered. The cells each pass must get
 // right lie within the reach of the passes after it (<= reach - r) of the grid, so a margin
-// of `reach` (axis + 2 diagonal) keeps them clear of the unfiltered margin.
-template <class Op>
-void Apply(int cols, int rows, const Octagon& element, std::vector<float>* z) {
-  HYLO_CHECK(z->size() == static_cast<std::size_t>(cols) * rows, "one value per cell");
-  HYLO_CHECK(element.axis >= 0 && element.diagonal >= 0, "line half-lengths");
-  const int pad = element.axis + 2 * element.diagonal;
-  Work work;
-  work.cols = cols + 2 * pad;
-  work.rows = rows + 2 * pad;
-  const std::size_t size = static_cast<std::size_t>(work.cols) * work.rows;
-  work.z.assign(size, Op::kNeutral);
-  work.g.resize(size);
-  work.h.resize(size);
-  work.out.resize(static_cast<std::size_t>(work.cols));
+// of `reach` (axis + 2 diagonal) keeps them clear of the unfiltered margin. `work` keeps its
+// buffers from call to call (the progressive filter makes dozens of these on one grid).
+
+int PadFor(const Octagon& element) { return element.axis + 2 * element.diagonal; }
+
+// Copies the cols x rows grid into the middle of `work`, padded with `neutral`.
+void Load(int cols, int rows, int pad, float neutral, const std::vector<float>& z, Work* work) {
+  HYLO_CHECK(z.size() == static_cast<std::size_t>(cols) * rows, "one value per cell");
+  work->cols = cols + 2 * pad;
+  work->rows = rows + 2 * pad;
+  const std::size_t size = static_cast<std::size_t>(work->cols) * work->rows;
+  work->z.assign(size, neutral);
+  if (work->g.size() < size) work->g.resize(size);
+  if (work->h.size() < size) work->h.resize(size);
+  work->out.resize(static_cast<std::size_t>(work->cols));
   for (int row = 0; row < rows; ++row) {
-    std::copy_n(z->data() + static_cast<std::size_t>(row) * cols, cols,
-                work.Row(work.z, row + pad) + pad);
+    std::copy_n(z.data() + static_cast<std::size_t>(row) * cols, cols,
+                work->Row(work->z, row + pad) + pad);
   }
-  FilterRows<Op>(element.axis, &work);
-  FilterDownLines<Op>(0, element.axis, &work);
-  FilterDownLines<Op>(1, element.diagonal, &work);
-  FilterDownLines<Op>(-1, element.diagonal, &work);
+}
+
+// Sets the pad of `work` (everything outside the middle cols x rows) to `neutral`.
+void Repad(int cols, int rows, int pad, float neutral, Work* work) {
+  for (int row = 0; row < work->rows; ++row) {
+    float* line = work->Row(work->z, row);
+    if (row < pad || row >= rows + pad) {
+      std::fill_n(line, work->cols, neutral);
+    } else {
+      std::fill_n(line, pad, neutral);
+      std::fill_n(line + pad + cols, pad, neutral);
+    }
+  }
+}
+
+void Store(int cols, int rows, int pad, Work* work, std::vector<float>* z) {
   for (int row = 0; row < rows; ++row) {
-    std::copy_n(work.Row(work.z, row + pad) + pad, cols,
+    std::copy_n(work->Row(work->z, row + pad) + pad, cols,
                 z->data() + static_cast<std::size_t>(row) * cols);
   }
+}
+
+template <class Op>
+void Passes(const Octagon& element, Work* work) {
+  HYLO_CHECK(element.axis >= 0 && element.diagonal >= 0, "line half-lengths");
+  FilterRows<Op>(element.axis, work);
+  FilterDownLines<Op>(0, element.axis, work);
+  FilterDownLines<Op>(1, element.diagonal, work);
+  FilterDownLines<Op>(-1, element.diagonal, work);
+}
+
+template <class Op>
+void Apply(int cols, int rows, const Octagon& element, std::vector<float>* z, Work* work) {
+  const int pad = PadFor(element);
+  Load(cols, rows, pad, Op::kNeutral, *z, work);
+  Passes<Op>(element, work);
+  Store(cols, rows, pad, work, z);
+}
+
+// The erosion stays in `work`: only its pad changes to the dilation's neutral value.
+void Open(int cols, int rows, const Octagon& element, std::vector<float>* z, Work* work) {
+  const int pad = PadFor(element);
+  Load(cols, rows, pad, MinOp::kNeutral, *z, work);
+  Passes<MinOp>(element, work);
+  Repad(cols, rows, pad, MaxOp::kNeutral, work);
+  Passes<MaxOp>(element, work);
+  Store(cols, rows, pad, work, z);
 }
 
 }  // namespace
@@ -165,16 +205,18 @@ Octagon OctagonForRadius(int radius_cells) {
 }
 
 void Erode(int cols, int rows, const Octagon& element, std::vector<float>* z) {
-  Apply<MinOp>(cols, rows, element, z);
+  Work work;
+  Apply<MinOp>(cols, rows, element, z, &work);
 }
 
 void Dilate(int cols, int rows, const Octagon& element, std::vector<float>* z) {
-  Apply<MaxOp>(cols, rows, element, z);
+  Work work;
+  Apply<MaxOp>(cols, rows, element, z, &work);
 }
 
 void Open(int cols, int rows, const Octagon& element, std::vector<float>* z) {
-  Erode(cols, rows, element, z);
-  Dilate(cols, rows, element, z);
+  Work work;
+  Open(cols, rows, element, z, &work);
 }
 
 std::vector<uint8_t> ProgressiveFilter(const Raster& surface, double slope, int max_radius_cells,
@@ -194,9 +236,10 @@ std::vector<uint8_t> ProgressiveFilter(const Raster& surface, double slope, int 
   }
   std::vector<uint8_t> object(surface.Size(), 0);
   std::vector<float> opened;
+  Work work;
   for (int radius = 1; radius <= max_radius_cells; ++radius) {
     opened = previous;
-    Open(cols, rows, OctagonForRadius(radius), &opened);
+    Open(cols, rows, OctagonForRadius(radius), &opened, &work);
     const float threshold = static_cast<float>(slope * radius * surface.cell_m);
     for (int row = 0; row < surface.rows; ++row) {
       const std::size_t padded = static_cast<std::size_t>(row + pad) * cols + pad;

@@ -83,36 +83,48 @@ Raster CoveringRaster(const Eigen::Vector2d& min_xy, const Eigen::Vector2d& max_
   return raster;
 }
 
-std::size_t FillMinimumSurface(const PointCloud& points, Raster* raster) {
+std::size_t FillMinimumSurface(const PointCloud& points, Raster* raster,
+                               std::vector<Eigen::Vector2f>* lowest_offset_m) {
+  if (lowest_offset_m) lowest_offset_m->assign(raster->Size(), Eigen::Vector2f::Zero());
   std::size_t filled = 0;
   for (const Eigen::Vector3f& p : points) {
     if (!p.allFinite()) continue;
     int col, row;
     raster->CellOf(p.x(), p.y(), &col, &row);
-    float& z = raster->z[raster->Index(col, row)];
+    const std::size_t i = raster->Index(col, row);
+    float& z = raster->z[i];
     if (std::isnan(z)) {
-      z = p.z();
       ++filled;
-    } else {
-      z = std::min(z, p.z());
+    } else if (z <= p.z()) {
+      continue;
+    }
+    z = p.z();
+    if (lowest_offset_m) {
+      const Eigen::Vector2d centre =
+          raster->origin_xy + raster->cell_m * Eigen::Vector2d(col + 0.5, row + 0.5);
+      (*lowest_offset_m)[i] = (p.head<2>().cast<double>() - centre).cast<float>();
     }
   }
   return filled;
 }
 
-Raster SlopeOf(const Raster& dem) {
-  Raster slope = dem;
+Eigen::Vector2d GradientPerCell(const Raster& dem, int col, int row) {
   const auto difference = [&dem](int a_col, int a_row, int b_col, int b_row) {
     const int steps = std::abs(b_col - a_col) + std::abs(b_row - a_row);
     if (steps == 0) return 0.0;
     return (static_cast<double>(dem.z[dem.Index(b_col, b_row)]) - dem.z[dem.Index(a_col, a_row)]) /
-           (steps * dem.cell_m);
+           steps;
   };
+  return {difference(std::max(col - 1, 0), row, std::min(col + 1, dem.cols - 1), row),
+          difference(col, std::max(row - 1, 0), col, std::min(row + 1, dem.rows - 1))};
+}
+
+Raster SlopeOf(const Raster& dem) {
+  Raster slope = dem;
   for (int row = 0; row < dem.rows; ++row) {
     for (int col = 0; col < dem.cols; ++col) {
-      const double gx = difference(std::max(col - 1, 0), row, std::min(col + 1, dem.cols - 1), row);
-      const double gy = difference(col, std::max(row - 1, 0), col, std::min(row + 1, dem.rows - 1));
-      slope.z[slope.Index(col, row)] = static_cast<float>(std::sqrt(gx * gx + gy * gy));
+      const double rise_per_cell = GradientPerCell(dem, col, row).norm();
+      slope.z[slope.Index(col, row)] = static_cast<float>(rise_per_cell / dem.cell_m);
     }
   }
   return slope;

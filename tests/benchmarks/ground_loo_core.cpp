@@ -38,10 +38,16 @@ std::string Join(const char* name, const std::vector<T>& values) {
   return os.str();
 }
 
-// SMRF settings that share a provisional surface differ only in the classification.
-using SurfaceKey = std::tuple<double, double, double, double, double>;
+// SMRF settings that share a provisional surface differ only in the elevation scaler (the
+// elevation threshold is also the DEM's re-admission tolerance).
+using SurfaceKey = std::tuple<double, double, double, double, double, double>;
 SurfaceKey KeyOf(const SmrfOptions& o) {
-  return {o.cell_m, o.slope, o.max_window_m, o.low_outlier_slope, o.low_outlier_window_m};
+  return {o.cell_m,
+          o.slope,
+          o.max_window_m,
+          o.low_outlier_slope,
+          o.low_outlier_window_m,
+          o.elevation_threshold_m};
 }
 
 void EvaluateSmrfSample(const std::vector<Setting>& grid, const std::vector<std::size_t>& members,

@@ -33,9 +33,10 @@ std::string DescribeCsfGrid();
 /// confusion[setting][sample].
 using ConfusionTable = std::vector<std::vector<Confusion>>;
 
-/// Runs every setting on every sample. SMRF settings that differ only in the classification
-/// thresholds share one provisional surface per sample, so the SMRF grid costs one
-/// morphology per (cell, slope, window).
+/// Runs every setting on every sample. SMRF settings that differ only in the elevation
+/// scaler share one provisional surface per sample (the elevation threshold is also the
+/// DEM's re-admission tolerance), so the SMRF grid costs one surface per (cell, slope, window,
+/// elevation threshold).
 ConfusionTable EvaluateGrid(const std::vector<Setting>& grid, const std::vector<Sample>& samples);
 
 /// Mean over samples of the per-sample total error of `setting`, % (the ISPRS convention).

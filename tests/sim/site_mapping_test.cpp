@@ -63,10 +63,10 @@ TEST_F(SiteMappingTest, CraftingMakesTheMapThinner) {
 }
 
 // The demo's ground filter (SMRF, GroundFilterOptions::ForRobotMaps). Measured (seed 1): type
-// I 0.85 %, total 3.3 %, kappa 0.925 here; 1.7 %, 3.2 %, 0.914 on the full session. The cloth
+// I 0.28 %, total 2.6 %, kappa 0.941 here. The cloth
 // filter the chain used before: 0.05 %, 6.6 %, 0.847 (full: 1.6 %, 5.8 %, 0.836), nearly all
 // of its error type II from object returns less than its 0.5 m threshold above the ground
-// (fence bottoms, transformer plinths, the cable drum); SMRF's 0.15 m threshold rejects most
+// (fence bottoms, transformer plinths, the cable drum); SMRF's 0.10 m threshold rejects most
 // of them at the price of a little type I. What type II is left is returns closer still to
 // the ground. The bounds leave room for that, not for a filter that misses whole structures.
 TEST_F(SiteMappingTest, GroundLabelsAgreeWithTheHitSurfaces) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ground_test_scenes.h"
+#include "hylo/terrain/ground_filter.h"
 
 namespace hylo::terrain {
 namespace {
@@ -102,6 +103,27 @@ TEST(Smrf, BridgeDeckOverACuttingIsAnObject) {
   const SceneScore score = scenes::Score(scene, result.labels);
   EXPECT_GE(score.ground_kept, 0.98) << result.message;
   EXPECT_GE(score.objects_removed, 0.90) << result.message;
+}
+
+// A road embankment 3 m high with 35 deg sides and a 6 m top: the opening takes its top out
+// as it takes out a building (both are raised and narrower than the window); the DEM must
+// bring it back from the slopes of its sides, and the house beside it must stay an object.
+TEST(Smrf, AnEmbankmentNarrowerThanTheWindowStaysGround) {
+  for (const float density : {0.5f, 2.f}) {
+    SceneSpec spec;
+    spec.size_m = 100.f;
+    spec.density = density;
+    spec.terrain = [](float x, float y) {
+      return 0.01f * y + Bank(x, 40.f, 3.f, 35.f) - Bank(x, 50.3f, 3.f, 35.f);
+    };
+    spec.slabs = {{70, 30, 82, 45, 3}};
+    const Scene scene = MakeScene(spec);
+    const SmrfResult result = FilterGroundSmrfLocal(scene.points, GroundFilterOptions().smrf);
+    ASSERT_TRUE(result.ok) << result.message;
+    const SceneScore score = scenes::Score(scene, result.labels);
+    EXPECT_GE(score.ground_kept, 0.99) << density << " points/m^2: " << result.message;
+    EXPECT_GE(score.objects_removed, 0.95) << density << " points/m^2: " << result.message;
+  }
 }
 
 TEST(Smrf, LowOutliersAreObjectsAndDoNotPullTheGroundDown) {

@@ -8,15 +8,21 @@
 //   3. the progressive opening: windows growing linearly, one cell per step; a cell that drops
 //      by more than slope x window radius between two steps is an object;
 //   4. the provisional DEM: the minimum surface without object and low-outlier cells,
-//      inpainted;
+//      inpainted. Here the gaps are filled with the tangent planes of the ground around them
+//      (the membrane, which the morphology uses, cannot rise above a gap's rim), each ground
+//      cell's lowest point is moved to the cell centre along the DEM's slope, and cells the
+//      opening flagged that lie within elevation_threshold_m of the DEM are re-admitted, round
+//      after round (a ridge or an embankment narrower than the window is flagged like a roof;
+//      unlike a roof it connects to the ground by slopes);
 //   5. every point is ground when its height above the DEM is within elevation_threshold_m
 //      plus elevation_scaler times the DEM's slope under it (points on steep slopes sit
 //      farther from an interpolated surface).
 //
 // The pieces live in separate headers, one idea each: ground_smrf_raster.h (the grid, the
 // minimum surface, interpolation, slope), ground_smrf_inpaint.h (filling unknown cells),
-// ground_smrf_morphology.h (opening and the progressive filter). This header is the entry
-// point; ground_filter.h puts it behind the interface shared with the cloth filter.
+// ground_smrf_morphology.h (opening and the progressive filter), ground_smrf_dem.h (step 4).
+// This header is the entry point; ground_filter.h puts it behind the interface shared with
+// the cloth filter.
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -24,9 +30,9 @@
 #include <string>
 #include <vector>
 
+#include "hylo/common/point_types.h"
 #include "hylo/terrain/ground_label.h"
 #include "hylo/terrain/ground_smrf_raster.h"
-#include "hylo/common/point_types.h"
 
 namespace hylo::terrain {
 
@@ -41,7 +47,8 @@ struct SmrfOptions {
   double max_window_m = 18.0;          ///< paper w: radius of the largest opening, m (>= cell_m);
                                        ///< the widest object removed is about twice this
   double elevation_threshold_m = 0.5;  ///< paper et: ground when within this of the DEM on flat
-                                       ///< terrain, m (>= 0)
+                                       ///< terrain, m (>= 0); also the tolerance within which a
+                                       ///< flagged cell is re-admitted to the DEM
   double elevation_scaler = 1.25;      ///< paper es: the threshold grows by this times the DEM's
                                        ///< slope (rise over run) under the point, m (>= 0)
   double low_outlier_slope = 5.0;      ///< paper: 500 %; low-outlier test's slope tolerance (> 0)
@@ -62,6 +69,8 @@ struct SmrfSurface {
   std::size_t num_cells_with_points = 0;  ///< cells the minimum surface got from points
   std::size_t num_low_outlier_cells = 0;  ///< flagged by step 2
   std::size_t num_object_cells = 0;       ///< flagged by step 3 (not counting low outliers)
+  std::size_t num_readmitted_cells = 0;   ///< of those, re-admitted to the DEM in step 4
+  int dem_rounds = 0;                     ///< DEMs step 4 built
   int max_window_cells = 0;               ///< radius of the largest opening, cells
 };
 
@@ -80,6 +89,7 @@ struct SmrfResult {
   std::size_t num_empty_cells = 0;        ///< cells without a point (inpainted)
   std::size_t num_low_outlier_cells = 0;  ///< see SmrfSurface
   std::size_t num_object_cells = 0;       ///< see SmrfSurface
+  std::size_t num_readmitted_cells = 0;   ///< see SmrfSurface
   Eigen::Vector3d origin_world = Eigen::Vector3d::Zero();  ///< shift used to compute near zero
 };
 
@@ -94,13 +104,13 @@ SmrfResult FilterGroundSmrf(const std::vector<Eigen::Vector3d>& points_world,
                             const SmrfOptions& options, const SmrfProgress& progress = {});
 
 /// The same on a cloud already near zero (origin_world stays zero).
-SmrfResult FilterGroundSmrfLocal(const PointCloud& points_local,
-                                 const SmrfOptions& options, const SmrfProgress& progress = {});
+SmrfResult FilterGroundSmrfLocal(const PointCloud& points_local, const SmrfOptions& options,
+                                 const SmrfProgress& progress = {});
 
 /// Steps 1-4 on a cloud near zero with at least one finite point (checked) whose grid is
 /// within options.max_cells (checked by the caller: FilterGroundSmrfLocal reports it).
-SmrfSurface ComputeSmrfSurface(const PointCloud& points_local,
-                               const SmrfOptions& options, const SmrfProgress& progress = {});
+SmrfSurface ComputeSmrfSurface(const PointCloud& points_local, const SmrfOptions& options,
+                               const SmrfProgress& progress = {});
 
 /// Step 5: labels every point of `points_local` against `surface` (fills labels, heights and
 /// the point counts of *result).

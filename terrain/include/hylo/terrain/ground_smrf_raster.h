@@ -52,8 +52,16 @@ double CoveringCellCount(const Eigen::Vector2d& min_xy, const Eigen::Vector2d& m
                          double cell_m);
 
 /// The paper's ZImin: each cell takes the lowest z of the finite points in it; cells without a
-/// point stay NaN. Returns how many cells got a point.
-std::size_t FillMinimumSurface(const PointCloud& points, Raster* raster);
+/// point stay NaN. Returns how many cells got a point. When `lowest_offset_m` is given, it
+/// gets one entry per cell: where the lowest point lies relative to the cell centre (x, y, m;
+/// zero for cells without a point).
+std::size_t FillMinimumSurface(const PointCloud& points, Raster* raster,
+                               std::vector<Eigen::Vector2f>* lowest_offset_m = nullptr);
+
+/// The gradient of `dem` at cell (col, row) in rise per cell along x and y: central
+/// differences, one-sided at the border, zero along an axis of one cell. The cell and its four
+/// neighbours must be known.
+Eigen::Vector2d GradientPerCell(const Raster& dem, int col, int row);
 
 /// Magnitude of the gradient (rise over run) by central differences, one-sided at the border;
 /// `dem` must be fully known. The result has dem's geometry.

@@ -77,7 +77,7 @@ struct RunConfig {
   OutputFrames output;
   /// Offline ground extraction of the run's map (`hylo demo`'s chain): method smrf | csf and
   /// each back-end's options; defaults for a ground robot's map (GroundFilterOptions::
-  /// ForRobotMaps: SMRF, elevation threshold 0.15 m).
+  /// ForRobotMaps: SMRF, elevation threshold 0.10 m).
   terrain::GroundFilterOptions ground = terrain::GroundFilterOptions::ForRobotMaps();
 
   /// Checks every section; *why names the key path, the value and the constraint.
