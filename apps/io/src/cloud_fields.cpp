@@ -81,7 +81,8 @@ bool BufferedReader::NextLine(std::string* line) {
     any = true;
     const uint8_t* start = buffer_.data() + begin_;
     const auto* stop = static_cast<const uint8_t*>(std::memchr(start, '\n', end_ - begin_));
-    const std::size_t take = stop == nullptr ? end_ - begin_ : static_cast<std::size_t>(stop - start);
+    const std::size_t take =
+        stop == nullptr ? end_ - begin_ : static_cast<std::size_t>(stop - start);
     line->append(reinterpret_cast<const char*>(start), take);
     begin_ += take;
     if (stop != nullptr) {
@@ -119,17 +120,25 @@ double DecodeScalar(const uint8_t* bytes, ScalarType type, bool swap) {
       return type.size == 4 ? Load<float>(bytes, swap) : Load<double>(bytes, swap);
     case ScalarKind::kSigned:
       switch (type.size) {
-        case 1: return Load<int8_t>(bytes, swap);
-        case 2: return Load<int16_t>(bytes, swap);
-        case 4: return Load<int32_t>(bytes, swap);
-        default: return Load<int64_t>(bytes, swap);
+        case 1:
+          return Load<int8_t>(bytes, swap);
+        case 2:
+          return Load<int16_t>(bytes, swap);
+        case 4:
+          return Load<int32_t>(bytes, swap);
+        default:
+          return Load<int64_t>(bytes, swap);
       }
     case ScalarKind::kUnsigned:
       switch (type.size) {
-        case 1: return Load<uint8_t>(bytes, swap);
-        case 2: return Load<uint16_t>(bytes, swap);
-        case 4: return Load<uint32_t>(bytes, swap);
-        default: return Load<uint64_t>(bytes, swap);
+        case 1:
+          return Load<uint8_t>(bytes, swap);
+        case 2:
+          return Load<uint16_t>(bytes, swap);
+        case 4:
+          return Load<uint32_t>(bytes, swap);
+        default:
+          return Load<uint64_t>(bytes, swap);
       }
   }
   return 0.0;

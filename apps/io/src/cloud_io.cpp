@@ -86,8 +86,8 @@ class KittiStream final : public CloudStream {
     double record[internal::kNumSlots] = {};
     for (std::size_t i = 0; i < n; ++i) {
       for (int k = 0; k < 4; ++k) {
-        record[k] = internal::DecodeScalar(buffer_.data() + i * kKittiRecordBytes + 4 * k, f32,
-                                           false);
+        record[k] =
+            internal::DecodeScalar(buffer_.data() + i * kKittiRecordBytes + 4 * k, f32, false);
       }
       builder.Add(record);
     }
@@ -141,8 +141,9 @@ void WriteKittiBin(const std::string& path, const CloudFile& cloud) {
   internal::CheckAttributeSizes(path, cloud);
   // Refuse rather than silently drop what the format cannot hold.
   if (!cloud.normals.empty() || !cloud.labels.empty()) {
-    internal::ThrowFileError(path, "cannot write: KITTI .bin holds x y z intensity only, the "
-                                   "cloud has normals or labels (use .pcd or .ply)");
+    internal::ThrowFileError(path,
+                             "cannot write: KITTI .bin holds x y z intensity only, the "
+                             "cloud has normals or labels (use .pcd or .ply)");
   }
   std::vector<uint8_t> body;
   body.reserve(cloud.positions.size() * kKittiRecordBytes);

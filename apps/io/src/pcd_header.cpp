@@ -28,8 +28,8 @@ ScalarType ParseType(const std::string& path, const std::string& type, std::size
   } else if (type == "U" && int_size) {
     t.kind = ScalarKind::kUnsigned;
   } else {
-    ThrowFileError(path, "malformed header: unsupported TYPE " + type + " with SIZE " +
-                             std::to_string(size));
+    ThrowFileError(
+        path, "malformed header: unsupported TYPE " + type + " with SIZE " + std::to_string(size));
   }
   return t;
 }
@@ -39,8 +39,8 @@ struct RawHeader {
   bool has_width = false, has_points = false;
 };
 
-void ApplyHeaderLine(const std::string& path, const std::vector<std::string>& words,
-                     RawHeader* raw, PcdHeader* header) {
+void ApplyHeaderLine(const std::string& path, const std::vector<std::string>& words, RawHeader* raw,
+                     PcdHeader* header) {
   const std::string key = words[0];
   const std::vector<std::string> values(words.begin() + 1, words.end());
   auto single = [&]() {
@@ -72,7 +72,8 @@ void ApplyHeaderLine(const std::string& path, const std::vector<std::string>& wo
 void BuildFields(const std::string& path, const RawHeader& raw, PcdHeader* header) {
   const std::size_t n = raw.names.size();
   if (n == 0) ThrowFileError(path, "malformed header: no FIELDS line");
-  if (raw.sizes.size() != n || raw.types.size() != n || (!raw.counts.empty() && raw.counts.size() != n)) {
+  if (raw.sizes.size() != n || raw.types.size() != n ||
+      (!raw.counts.empty() && raw.counts.size() != n)) {
     ThrowFileError(path, "malformed header: FIELDS, SIZE, TYPE and COUNT disagree in length");
   }
   bool seen[kNumSlots] = {};
@@ -115,8 +116,8 @@ PcdHeader ReadPcdHeader(const std::string& path, std::ifstream* in) {
     if (!raw.has_width) ThrowFileError(path, "malformed header: no WIDTH line");
     if (!raw.has_points) header.points = header.width * header.height;
     if (header.points != header.width * header.height) {
-      ThrowFileError(path, "malformed header: POINTS " + std::to_string(header.points) +
-                               " != WIDTH * HEIGHT");
+      ThrowFileError(
+          path, "malformed header: POINTS " + std::to_string(header.points) + " != WIDTH * HEIGHT");
     }
     BuildFields(path, raw, &header);
     return header;

@@ -28,8 +28,7 @@ std::vector<uint8_t> LzfDecompress(const std::string& path, const uint8_t* input
 class LzfCursor {
  public:
   /// The stream is `size` bytes at byte `offset` of `path` and expands to `expected` bytes.
-  LzfCursor(const std::string& path, std::streamoff offset, std::size_t size,
-            std::size_t expected);
+  LzfCursor(const std::string& path, std::streamoff offset, std::size_t size, std::size_t expected);
   /// The next `n` decompressed bytes into `out`, or dropped when `out` is nullptr.
   void Read(uint8_t* out, std::size_t n);
 

@@ -20,8 +20,8 @@ using internal::ScalarKind;
 using internal::ThrowFileError;
 
 [[noreturn]] void Truncated(const std::string& path, std::size_t have, const std::string& promise) {
-  ThrowFileError(path, "truncated: " + std::to_string(have) + " data bytes, header promises " +
-                           promise);
+  ThrowFileError(path,
+                 "truncated: " + std::to_string(have) + " data bytes, header promises " + promise);
 }
 
 std::string PointsOf(const PcdHeader& header) {
@@ -216,11 +216,11 @@ class PcdStream final : public CloudStream {
   std::ifstream in_;
   PcdHeader header_;
   bool present_[internal::kNumSlots] = {};
-  std::vector<uint8_t> buffer_;                          // binary: one chunk of records
-  std::vector<std::size_t> field_start_;                 // compressed: byte of each field
-  std::vector<uint8_t> block_;                           // compressed, whole: the block
+  std::vector<uint8_t> buffer_;                                // binary: one chunk of records
+  std::vector<std::size_t> field_start_;                       // compressed: byte of each field
+  std::vector<uint8_t> block_;                                 // compressed, whole: the block
   std::vector<std::unique_ptr<internal::LzfCursor>> cursors_;  // compressed, streamed
-  std::vector<std::vector<uint8_t>> field_chunks_;       // ... one chunk of each field
+  std::vector<std::vector<uint8_t>> field_chunks_;             // ... one chunk of each field
   std::size_t ascii_line_ = 0;
 };
 

@@ -44,8 +44,8 @@ std::string Header(const std::vector<OutField>& fields, std::size_t points,
   }
   std::ostringstream out;
   out << "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\n"
-      << "FIELDS" << names.str() << "\nSIZE" << sizes.str() << "\nTYPE" << types.str()
-      << "\nCOUNT" << counts.str() << "\nWIDTH " << points << "\nHEIGHT 1\n"
+      << "FIELDS" << names.str() << "\nSIZE" << sizes.str() << "\nTYPE" << types.str() << "\nCOUNT"
+      << counts.str() << "\nWIDTH " << points << "\nHEIGHT 1\n"
       << "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << points << "\nDATA " << data << "\n";
   return out.str();
 }

@@ -39,14 +39,14 @@ struct PlyHeader {
 
 ScalarType ParsePlyType(const std::string& path, const std::string& name) {
   static const std::pair<const char*, ScalarType> kTypes[] = {
-      {"char", {ScalarKind::kSigned, 1}},    {"int8", {ScalarKind::kSigned, 1}},
-      {"uchar", {ScalarKind::kUnsigned, 1}}, {"uint8", {ScalarKind::kUnsigned, 1}},
-      {"short", {ScalarKind::kSigned, 2}},   {"int16", {ScalarKind::kSigned, 2}},
+      {"char", {ScalarKind::kSigned, 1}},     {"int8", {ScalarKind::kSigned, 1}},
+      {"uchar", {ScalarKind::kUnsigned, 1}},  {"uint8", {ScalarKind::kUnsigned, 1}},
+      {"short", {ScalarKind::kSigned, 2}},    {"int16", {ScalarKind::kSigned, 2}},
       {"ushort", {ScalarKind::kUnsigned, 2}}, {"uint16", {ScalarKind::kUnsigned, 2}},
-      {"int", {ScalarKind::kSigned, 4}},     {"int32", {ScalarKind::kSigned, 4}},
-      {"uint", {ScalarKind::kUnsigned, 4}},  {"uint32", {ScalarKind::kUnsigned, 4}},
-      {"float", {ScalarKind::kFloat, 4}},    {"float32", {ScalarKind::kFloat, 4}},
-      {"double", {ScalarKind::kFloat, 8}},   {"float64", {ScalarKind::kFloat, 8}}};
+      {"int", {ScalarKind::kSigned, 4}},      {"int32", {ScalarKind::kSigned, 4}},
+      {"uint", {ScalarKind::kUnsigned, 4}},   {"uint32", {ScalarKind::kUnsigned, 4}},
+      {"float", {ScalarKind::kFloat, 4}},     {"float32", {ScalarKind::kFloat, 4}},
+      {"double", {ScalarKind::kFloat, 8}},    {"float64", {ScalarKind::kFloat, 8}}};
   for (const auto& [type_name, type] : kTypes) {
     if (name == type_name) return type;
   }
