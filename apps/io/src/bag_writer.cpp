@@ -24,8 +24,8 @@ struct BagWriter::Impl {
     try {
       bag.write(topic, ros_bridge::ToRosTime(std::max<int64_t>(receive_t_ns, 1)), msg);
     } catch (const rosbag::BagException& e) {
-      throw std::runtime_error("bag '" + path + "': cannot write to " + topic + " (" + e.what() +
-                               ")");
+      throw std::runtime_error("bag '" + path + "': cannot write to " + topic + " (" +
+                               e.what() + ")");
     }
   }
 };

@@ -14,8 +14,7 @@ std::string Header(const CloudFile& cloud, bool ascii, bool double_positions) {
   out << "ply\nformat " << (ascii ? "ascii" : "binary_little_endian") << " 1.0\n"
       << "comment written by hylo\nelement vertex " << cloud.positions.size() << "\n";
   const char* position_type = double_positions ? "double" : "float";
-  for (const char* axis : {"x", "y", "z"})
-    out << "property " << position_type << ' ' << axis << '\n';
+  for (const char* axis : {"x", "y", "z"}) out << "property " << position_type << ' ' << axis << '\n';
   if (!cloud.normals.empty()) out << "property float nx\nproperty float ny\nproperty float nz\n";
   if (!cloud.intensity.empty()) out << "property float intensity\n";
   if (!cloud.labels.empty()) out << "property int label\n";

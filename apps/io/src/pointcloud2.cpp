@@ -25,18 +25,13 @@ struct TimeSpec {
 
 TimeSpec TimeSpecFor(PointTimeConvention convention) {
   switch (convention) {
-    case PointTimeConvention::kVelodyne:
-      return {TimeKind::kRelativeSeconds, "time"};
-    case PointTimeConvention::kOuster:
-      return {TimeKind::kRelativeNs, "t"};
+    case PointTimeConvention::kVelodyne: return {TimeKind::kRelativeSeconds, "time"};
+    case PointTimeConvention::kOuster: return {TimeKind::kRelativeNs, "t"};
     case PointTimeConvention::kHesai:
-    case PointTimeConvention::kRobosense:
-      return {TimeKind::kAbsoluteSeconds, "timestamp"};
-    case PointTimeConvention::kLivox:
-      return {TimeKind::kAbsoluteNs, "timestamp"};
+    case PointTimeConvention::kRobosense: return {TimeKind::kAbsoluteSeconds, "timestamp"};
+    case PointTimeConvention::kLivox: return {TimeKind::kAbsoluteNs, "timestamp"};
     case PointTimeConvention::kAuto:
-    case PointTimeConvention::kNone:
-      break;
+    case PointTimeConvention::kNone: break;
   }
   return {};
 }
@@ -103,8 +98,8 @@ PointReaders BindFields(const PointCloud2Message& cloud, PointTimeConvention con
   r.y = FindField(cloud.fields, "y");
   r.z = FindField(cloud.fields, "z");
   if (!r.x.present() || !r.y.present() || !r.z.present()) {
-    throw std::runtime_error("PointCloud2 has no x/y/z fields (fields: " + FieldList(cloud.fields) +
-                             ")");
+    throw std::runtime_error("PointCloud2 has no x/y/z fields (fields: " +
+                             FieldList(cloud.fields) + ")");
   }
   r.intensity = FindField(cloud.fields, "intensity");
   r.ring = FindField(cloud.fields, "ring");
@@ -115,8 +110,8 @@ PointReaders BindFields(const PointCloud2Message& cloud, PointTimeConvention con
     r.time = FindField(cloud.fields, spec.field);
     if (!r.time.present()) {
       throw std::runtime_error("per-point time convention needs a field '" +
-                               std::string(spec.field) + "' (fields: " + FieldList(cloud.fields) +
-                               ")");
+                               std::string(spec.field) + "' (fields: " +
+                               FieldList(cloud.fields) + ")");
     }
   }
   return r;
@@ -137,24 +132,15 @@ double ReadScalar(const uint8_t* point, const FieldSlot& slot, bool swap) {
   std::memcpy(bytes, point + slot.offset, size);
   if (swap) std::reverse(bytes, bytes + size);
   switch (slot.datatype) {
-    case kInt8:
-      return Load<int8_t>(bytes);
-    case kUint8:
-      return Load<uint8_t>(bytes);
-    case kInt16:
-      return Load<int16_t>(bytes);
-    case kUint16:
-      return Load<uint16_t>(bytes);
-    case kInt32:
-      return Load<int32_t>(bytes);
-    case kUint32:
-      return Load<uint32_t>(bytes);
-    case kFloat32:
-      return Load<float>(bytes);
-    case kFloat64:
-      return Load<double>(bytes);
-    default:
-      return std::numeric_limits<double>::quiet_NaN();
+    case kInt8: return Load<int8_t>(bytes);
+    case kUint8: return Load<uint8_t>(bytes);
+    case kInt16: return Load<int16_t>(bytes);
+    case kUint16: return Load<uint16_t>(bytes);
+    case kInt32: return Load<int32_t>(bytes);
+    case kUint32: return Load<uint32_t>(bytes);
+    case kFloat32: return Load<float>(bytes);
+    case kFloat64: return Load<double>(bytes);
+    default: return std::numeric_limits<double>::quiet_NaN();
   }
 }
 
@@ -164,15 +150,10 @@ constexpr double kMaxNs = 9.0e18;  // inside int64, with margin for the addition
 bool ToAbsoluteNs(double value, TimeKind kind, int64_t stamp_ns, int64_t* t_ns) {
   if (!std::isfinite(value)) return false;
   switch (kind) {
-    case TimeKind::kNone:
-      *t_ns = stamp_ns;
-      return true;
-    case TimeKind::kRelativeSeconds:
-      value *= 1e9;
-      break;
+    case TimeKind::kNone: *t_ns = stamp_ns; return true;
+    case TimeKind::kRelativeSeconds: value *= 1e9; break;
     case TimeKind::kRelativeNs:
-    case TimeKind::kAbsoluteNs:
-      break;
+    case TimeKind::kAbsoluteNs: break;
     case TimeKind::kAbsoluteSeconds: {
       // Whole and fractional seconds apart: value * 1e9 would round to 256 ns near 1.7e18.
       const double whole = std::floor(value);
@@ -229,8 +210,7 @@ LidarScan DecodePointCloud2(const PointCloud2Message& cloud, PointTimeConvention
       const uint8_t* p = row_start + std::size_t{col} * cloud.point_step;
       ScanPoint point;
       point.position_lidar = Eigen::Vector3d(ReadScalar(p, r.x, swap), ReadScalar(p, r.y, swap),
-                                             ReadScalar(p, r.z, swap))
-                                 .cast<float>();
+                                             ReadScalar(p, r.z, swap)).cast<float>();
       int64_t t_ns = cloud.stamp_ns;
       const double time = r.time.present() ? ReadScalar(p, r.time, swap) : 0.0;
       if (!point.position_lidar.allFinite() ||

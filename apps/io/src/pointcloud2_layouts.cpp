@@ -15,42 +15,28 @@ namespace hylo::io {
 std::size_t PointFieldSize(uint8_t datatype) {
   switch (datatype) {
     case kInt8:
-    case kUint8:
-      return 1;
+    case kUint8: return 1;
     case kInt16:
-    case kUint16:
-      return 2;
+    case kUint16: return 2;
     case kInt32:
     case kUint32:
-    case kFloat32:
-      return 4;
-    case kFloat64:
-      return 8;
-    default:
-      return 0;
+    case kFloat32: return 4;
+    case kFloat64: return 8;
+    default: return 0;
   }
 }
 
 std::string PointFieldDatatypeName(uint8_t datatype) {
   switch (datatype) {
-    case kInt8:
-      return "int8";
-    case kUint8:
-      return "uint8";
-    case kInt16:
-      return "int16";
-    case kUint16:
-      return "uint16";
-    case kInt32:
-      return "int32";
-    case kUint32:
-      return "uint32";
-    case kFloat32:
-      return "float32";
-    case kFloat64:
-      return "float64";
-    default:
-      return "unknown(" + std::to_string(datatype) + ")";
+    case kInt8: return "int8";
+    case kUint8: return "uint8";
+    case kInt16: return "int16";
+    case kUint16: return "uint16";
+    case kInt32: return "int32";
+    case kUint32: return "uint32";
+    case kFloat32: return "float32";
+    case kFloat64: return "float64";
+    default: return "unknown(" + std::to_string(datatype) + ")";
   }
 }
 
@@ -66,7 +52,8 @@ PointTimeConvention DetectPointTimeConvention(const std::vector<PointFieldInfo>&
   if (has("timestamp")) {
     // livox_ros_driver2 is the only one of these drivers with `tag`/`line`; its timestamp is
     // in ns, where Hesai's and Robosense's are in seconds.
-    return (has("line") || has("tag")) ? PointTimeConvention::kLivox : PointTimeConvention::kHesai;
+    return (has("line") || has("tag")) ? PointTimeConvention::kLivox
+                                       : PointTimeConvention::kHesai;
   }
   return PointTimeConvention::kNone;
 }
@@ -74,19 +61,8 @@ PointTimeConvention DetectPointTimeConvention(const std::vector<PointFieldInfo>&
 namespace {
 
 /// What a field of an encoded point holds.
-enum class Role {
-  kX,
-  kY,
-  kZ,
-  kIntensity,
-  kRing,
-  kZero,
-  kOffsetSeconds,
-  kOffsetNs,
-  kAbsoluteSeconds,
-  kAbsoluteNs,
-  kRangeMm
-};
+enum class Role { kX, kY, kZ, kIntensity, kRing, kZero, kOffsetSeconds, kOffsetNs,
+                  kAbsoluteSeconds, kAbsoluteNs, kRangeMm };
 
 struct FieldSpec {
   const char* name;
@@ -115,12 +91,15 @@ DriverLayout LayoutFor(PointTimeConvention layout) {
       break;
     case PointTimeConvention::kOuster:
       // PCL struct with 16-byte aligned x y z (+ padding): intensity starts at 16.
-      out.fields = {
-          {"x", kFloat32, 0, Role::kX},          {"y", kFloat32, 4, Role::kY},
-          {"z", kFloat32, 8, Role::kZ},          {"intensity", kFloat32, 16, Role::kIntensity},
-          {"t", kUint32, 20, Role::kOffsetNs},   {"reflectivity", kUint16, 24, Role::kZero},
-          {"ring", kUint16, 26, Role::kRing},    {"ambient", kUint16, 28, Role::kZero},
-          {"range", kUint32, 32, Role::kRangeMm}};
+      out.fields = {{"x", kFloat32, 0, Role::kX},
+                    {"y", kFloat32, 4, Role::kY},
+                    {"z", kFloat32, 8, Role::kZ},
+                    {"intensity", kFloat32, 16, Role::kIntensity},
+                    {"t", kUint32, 20, Role::kOffsetNs},
+                    {"reflectivity", kUint16, 24, Role::kZero},
+                    {"ring", kUint16, 26, Role::kRing},
+                    {"ambient", kUint16, 28, Role::kZero},
+                    {"range", kUint32, 32, Role::kRangeMm}};
       out.point_step = 48;
       break;
     case PointTimeConvention::kHesai:
@@ -135,10 +114,8 @@ DriverLayout LayoutFor(PointTimeConvention layout) {
       out.fields.push_back({"timestamp", kFloat64, 18, Role::kAbsoluteNs});
       out.point_step = 26;
       break;
-    case PointTimeConvention::kNone:
-      break;
-    case PointTimeConvention::kAuto:
-      HYLO_CHECK(false, "kAuto is not a layout to write");
+    case PointTimeConvention::kNone: break;
+    case PointTimeConvention::kAuto: HYLO_CHECK(false, "kAuto is not a layout to write");
   }
   return out;
 }
@@ -151,28 +128,17 @@ double NsToSeconds(int64_t t_ns) {
 
 double FieldValue(Role role, const ScanPoint& p, int64_t scan_t_ns) {
   switch (role) {
-    case Role::kX:
-      return p.position_lidar.x();
-    case Role::kY:
-      return p.position_lidar.y();
-    case Role::kZ:
-      return p.position_lidar.z();
-    case Role::kIntensity:
-      return p.intensity;
-    case Role::kRing:
-      return p.ring;
-    case Role::kZero:
-      return 0.0;
-    case Role::kOffsetSeconds:
-      return p.offset_ns * 1e-9;
-    case Role::kOffsetNs:
-      return p.offset_ns;
-    case Role::kAbsoluteSeconds:
-      return NsToSeconds(scan_t_ns + p.offset_ns);
-    case Role::kAbsoluteNs:
-      return static_cast<double>(scan_t_ns + p.offset_ns);
-    case Role::kRangeMm:
-      return std::round(p.position_lidar.cast<double>().norm() * 1000.0);
+    case Role::kX: return p.position_lidar.x();
+    case Role::kY: return p.position_lidar.y();
+    case Role::kZ: return p.position_lidar.z();
+    case Role::kIntensity: return p.intensity;
+    case Role::kRing: return p.ring;
+    case Role::kZero: return 0.0;
+    case Role::kOffsetSeconds: return p.offset_ns * 1e-9;
+    case Role::kOffsetNs: return p.offset_ns;
+    case Role::kAbsoluteSeconds: return NsToSeconds(scan_t_ns + p.offset_ns);
+    case Role::kAbsoluteNs: return static_cast<double>(scan_t_ns + p.offset_ns);
+    case Role::kRangeMm: return std::round(p.position_lidar.cast<double>().norm() * 1000.0);
   }
   return 0.0;
 }
@@ -180,10 +146,10 @@ double FieldValue(Role role, const ScanPoint& p, int64_t scan_t_ns) {
 template <typename T>
 void Store(double value, uint8_t* bytes) {
   if constexpr (std::is_integral_v<T>) {  // NaN or out-of-range -> defined integer values
-    value = std::isfinite(value)
-                ? std::clamp<double>(std::round(value), std::numeric_limits<T>::lowest(),
-                                     std::numeric_limits<T>::max())
-                : 0.0;
+    value = std::isfinite(value) ? std::clamp<double>(std::round(value),
+                                                      std::numeric_limits<T>::lowest(),
+                                                      std::numeric_limits<T>::max())
+                                 : 0.0;
   }
   const T v = static_cast<T>(value);
   std::memcpy(bytes, &v, sizeof(T));
@@ -192,32 +158,15 @@ void Store(double value, uint8_t* bytes) {
 /// Writes `value` as `datatype` (little-endian host assumed, as on every supported target).
 void WriteScalar(double value, uint8_t datatype, uint8_t* bytes) {
   switch (datatype) {
-    case kInt8:
-      Store<int8_t>(value, bytes);
-      break;
-    case kUint8:
-      Store<uint8_t>(value, bytes);
-      break;
-    case kInt16:
-      Store<int16_t>(value, bytes);
-      break;
-    case kUint16:
-      Store<uint16_t>(value, bytes);
-      break;
-    case kInt32:
-      Store<int32_t>(value, bytes);
-      break;
-    case kUint32:
-      Store<uint32_t>(value, bytes);
-      break;
-    case kFloat32:
-      Store<float>(value, bytes);
-      break;
-    case kFloat64:
-      Store<double>(value, bytes);
-      break;
-    default:
-      HYLO_CHECK(false, "unknown datatype");
+    case kInt8: Store<int8_t>(value, bytes); break;
+    case kUint8: Store<uint8_t>(value, bytes); break;
+    case kInt16: Store<int16_t>(value, bytes); break;
+    case kUint16: Store<uint16_t>(value, bytes); break;
+    case kInt32: Store<int32_t>(value, bytes); break;
+    case kUint32: Store<uint32_t>(value, bytes); break;
+    case kFloat32: Store<float>(value, bytes); break;
+    case kFloat64: Store<double>(value, bytes); break;
+    default: HYLO_CHECK(false, "unknown datatype");
   }
 }
 

@@ -55,7 +55,8 @@ void Progress::Print(std::size_t done, bool final_line) {
   const double elapsed = ElapsedSeconds();
   if (total_ > 0) {
     std::fprintf(stderr, "%s[%s] %zu/%zu (%3.0f%%) %.1f s%s", tty_ ? "\r" : "", label_.c_str(),
-                 done, total_, 100.0 * done / total_, elapsed, (final_line || !tty_) ? "\n" : "");
+                 done, total_, 100.0 * done / total_, elapsed,
+                 (final_line || !tty_) ? "\n" : "");
   } else {
     std::fprintf(stderr, "%s[%s] %zu %.1f s%s", tty_ ? "\r" : "", label_.c_str(), done, elapsed,
                  (final_line || !tty_) ? "\n" : "");

@@ -94,8 +94,7 @@ std::unique_ptr<LogReader> OpenScanFolder(const std::string& dir, const LogReadO
   if (options.time_convention != PointTimeConvention::kAuto &&
       options.time_convention != PointTimeConvention::kNone) {
     throw std::runtime_error(dir + ": scan folders carry no per-point time; time convention '" +
-                             ToString(options.time_convention) +
-                             "' needs a bag (use auto or "
+                             ToString(options.time_convention) + "' needs a bag (use auto or "
                              "none)");
   }
   ScanFolderIndex index = IndexScanFolder(dir);

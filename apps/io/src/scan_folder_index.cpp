@@ -59,8 +59,8 @@ std::vector<ScanFile> ListScans(const std::string& dir, std::string* format) {
   if (files.empty()) ThrowFileError(dir, "no scan files (.pcd, .ply or .bin)");
   if (formats.size() > 1) ThrowFileError(dir, "mixed scan formats (pcd, ply and .bin together)");
   *format = *formats.begin();
-  const bool numbered =
-      std::all_of(files.begin(), files.end(), [](const ScanFile& f) { return f.has_number; });
+  const bool numbered = std::all_of(files.begin(), files.end(),
+                                    [](const ScanFile& f) { return f.has_number; });
   std::sort(files.begin(), files.end(), [numbered](const ScanFile& a, const ScanFile& b) {
     if (numbered && a.number != b.number) return a.number < b.number;
     return a.name < b.name;
@@ -77,9 +77,9 @@ std::vector<ScanFile> ListScans(const std::string& dir, std::string* format) {
 
 // Rows of the pose/time file: row k belongs to scan index k.
 struct Rows {
-  std::vector<int64_t> times;      ///< stamps, ns
-  std::vector<StampedPose> poses;  ///< reference poses
-  bool times_from_period = false;  ///< no time source: index x kDefaultScanPeriodNs
+  std::vector<int64_t> times;       ///< stamps, ns
+  std::vector<StampedPose> poses;   ///< reference poses
+  bool times_from_period = false;   ///< no time source: index x kDefaultScanPeriodNs
 };
 
 std::vector<std::string> SplitCommas(const std::string& line) {
@@ -208,16 +208,11 @@ Rows ReadPoseRows(const std::string& dir, ScanFolderIndex* index) {
 
 std::string ToString(ScanPoseFileKind kind) {
   switch (kind) {
-    case ScanPoseFileKind::kNone:
-      return "none";
-    case ScanPoseFileKind::kBalm:
-      return "balm";
-    case ScanPoseFileKind::kTum:
-      return "tum";
-    case ScanPoseFileKind::kKitti:
-      return "kitti";
-    case ScanPoseFileKind::kTimesOnly:
-      return "times";
+    case ScanPoseFileKind::kNone: return "none";
+    case ScanPoseFileKind::kBalm: return "balm";
+    case ScanPoseFileKind::kTum: return "tum";
+    case ScanPoseFileKind::kKitti: return "kitti";
+    case ScanPoseFileKind::kTimesOnly: return "times";
   }
   return "unknown";
 }

@@ -98,9 +98,8 @@ std::vector<StampedPose> ReadTum(const std::string& path) {
   std::vector<StampedPose> poses;
   for (const NumberLine& line : ReadDataLines(path)) {
     if (line.words.size() != 8) {
-      LineError(
-          path, line.line_no,
-          "expected 8 columns (t x y z qx qy qz qw), found " + std::to_string(line.words.size()));
+      LineError(path, line.line_no, "expected 8 columns (t x y z qx qy qz qw), found " +
+                                        std::to_string(line.words.size()));
     }
     StampedPose pose;
     if (!ParseSecondsToNs(line.words[0], &pose.t_ns)) {
@@ -173,8 +172,8 @@ std::vector<StampedPose> ReadKitti(const std::string& path, const KittiTiming& t
   std::vector<StampedPose> poses;
   for (const NumberLine& line : ReadDataLines(path)) {
     if (line.words.size() != 12) {
-      LineError(path, line.line_no,
-                "expected 12 numbers (row-major 3x4), found " + std::to_string(line.words.size()));
+      LineError(path, line.line_no, "expected 12 numbers (row-major 3x4), found " +
+                                        std::to_string(line.words.size()));
     }
     Eigen::Matrix<double, 3, 4> T;
     for (int k = 0; k < 12; ++k) T(k / 4, k % 4) = ParseNumber(path, line.line_no, line.words[k]);
@@ -184,8 +183,7 @@ std::vector<StampedPose> ReadKitti(const std::string& path, const KittiTiming& t
     }
     const std::size_t index = poses.size();
     if (timing.times_path.empty()) {
-      pose.t_ns =
-          timing.start_t_ns + std::llround(static_cast<double>(index) * timing.period_s * 1e9);
+      pose.t_ns = timing.start_t_ns + std::llround(static_cast<double>(index) * timing.period_s * 1e9);
     } else if (index < times.size()) {
       pose.t_ns = times[index];
     } else {

@@ -28,14 +28,14 @@ std::unique_ptr<LogReader> OpenBag(const std::string& path, const LogReadOptions
 
 /// One topic of a bag.
 struct BagTopicDescription {
-  std::string name;                 ///< topic name
-  std::string type;                 ///< message type, e.g. "sensor_msgs/Imu"
-  std::size_t message_count = 0;    ///< messages on the topic
-  double mean_rate_hz = 0.0;        ///< (count - 1) / (last - first stamp); 0 if undefined
-  int64_t first_stamp_ns = 0;       ///< header.stamp of the first message (Imu, PointCloud2),
-                                    ///< receive time for other types
-  int64_t last_stamp_ns = 0;        ///< the same for the last message
-  bool stamps_from_header = false;  ///< true when the stamps above are header stamps
+  std::string name;                ///< topic name
+  std::string type;                ///< message type, e.g. "sensor_msgs/Imu"
+  std::size_t message_count = 0;   ///< messages on the topic
+  double mean_rate_hz = 0.0;       ///< (count - 1) / (last - first stamp); 0 if undefined
+  int64_t first_stamp_ns = 0;      ///< header.stamp of the first message (Imu, PointCloud2),
+                                   ///< receive time for other types
+  int64_t last_stamp_ns = 0;       ///< the same for the last message
+  bool stamps_from_header = false; ///< true when the stamps above are header stamps
   /// PointCloud2 topics: the first message's fields and the convention they announce.
   std::vector<PointFieldInfo> point_fields;
   PointTimeConvention detected_convention = PointTimeConvention::kNone;
@@ -45,9 +45,9 @@ struct BagTopicDescription {
 struct BagDescription {
   std::string path;
   uint64_t file_size_bytes = 0;
-  int64_t start_ns = 0;     ///< earliest receive time in the bag
-  int64_t end_ns = 0;       ///< latest receive time in the bag
-  double duration_s = 0.0;  ///< end - start, s
+  int64_t start_ns = 0;        ///< earliest receive time in the bag
+  int64_t end_ns = 0;          ///< latest receive time in the bag
+  double duration_s = 0.0;     ///< end - start, s
   std::size_t message_count = 0;
   std::vector<BagTopicDescription> topics;  ///< sorted by name
 };

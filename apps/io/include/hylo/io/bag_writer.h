@@ -32,7 +32,8 @@ class BagWriter {
   void WriteScan(const std::string& topic, const LidarScan& scan, PointTimeConvention layout,
                  const std::string& frame_id);
   /// Any cloud, as given (tests of odd layouts; converters). Receive time `receive_t_ns`.
-  void WriteCloud(const std::string& topic, const PointCloud2Message& cloud, int64_t receive_t_ns);
+  void WriteCloud(const std::string& topic, const PointCloud2Message& cloud,
+                  int64_t receive_t_ns);
   /// Writes the index and closes the file; further writes throw std::logic_error.
   /// Throws std::runtime_error naming the file on an I/O error.
   void Close();

@@ -55,10 +55,10 @@ struct PointFieldInfo {
 
 /// A sensor_msgs/PointCloud2 message in plain C++ types.
 struct PointCloud2Message {
-  int64_t stamp_ns = 0;  ///< header.stamp, ns
-  std::string frame_id;  ///< header.frame_id
-  uint32_t height = 1;   ///< rows (1 for an unorganized cloud)
-  uint32_t width = 0;    ///< points per row
+  int64_t stamp_ns = 0;       ///< header.stamp, ns
+  std::string frame_id;       ///< header.frame_id
+  uint32_t height = 1;        ///< rows (1 for an unorganized cloud)
+  uint32_t width = 0;         ///< points per row
   std::vector<PointFieldInfo> fields;
   bool is_bigendian = false;  ///< byte order of `data`
   uint32_t point_step = 0;    ///< bytes per point

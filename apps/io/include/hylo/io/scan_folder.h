@@ -29,21 +29,21 @@ std::string ToString(ScanPoseFileKind kind);
 
 /// One scan file of a folder, in reading order.
 struct ScanFolderEntry {
-  std::string path;       ///< scan file
-  int64_t index = 0;      ///< number in the name (position in name order when some lack one)
-  bool has_time = false;  ///< a stamp was found for it
-  bool has_pose = false;  ///< a reference pose was found for it
-  StampedPose pose;       ///< T_world_lidar when has_pose; pose.t_ns = the scan stamp
+  std::string path;        ///< scan file
+  int64_t index = 0;       ///< number in the name (position in name order when some lack one)
+  bool has_time = false;   ///< a stamp was found for it
+  bool has_pose = false;   ///< a reference pose was found for it
+  StampedPose pose;        ///< T_world_lidar when has_pose; pose.t_ns = the scan stamp
 };
 
 /// The folder listing with stamps and reference poses (reads no point data).
 struct ScanFolderIndex {
   std::string dir;
-  std::string format;  ///< "pcd", "ply" or "kitti_bin"
+  std::string format;                   ///< "pcd", "ply" or "kitti_bin"
   ScanPoseFileKind pose_kind = ScanPoseFileKind::kNone;
-  std::string pose_file;               ///< pose (or times) file used, empty when none
-  std::string time_source;             ///< where stamps come from, for printouts
-  std::vector<ScanFolderEntry> scans;  ///< reading order
+  std::string pose_file;                ///< pose (or times) file used, empty when none
+  std::string time_source;              ///< where stamps come from, for printouts
+  std::vector<ScanFolderEntry> scans;   ///< reading order
 };
 
 /// What `hylo info` prints about a folder.
@@ -57,9 +57,9 @@ struct ScanFolderDescription {
   ScanPoseFileKind pose_kind = ScanPoseFileKind::kNone;
   std::string pose_file;
   std::string time_source;
-  int64_t first_t_ns = 0;    ///< earliest scan stamp, ns
-  int64_t last_t_ns = 0;     ///< latest scan stamp, ns
-  double time_span_s = 0.0;  ///< last - first, s
+  int64_t first_t_ns = 0;                 ///< earliest scan stamp, ns
+  int64_t last_t_ns = 0;                  ///< latest scan stamp, ns
+  double time_span_s = 0.0;               ///< last - first, s
   std::size_t scans_with_pose = 0;
   std::size_t scans_without_pose = 0;
   std::size_t scans_without_time = 0;

@@ -13,8 +13,8 @@ namespace hylo::io {
 
 /// One pose T_world_body at a time.
 struct StampedPose {
-  int64_t t_ns = 0;                                                 ///< stamp, ns
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();               ///< body origin in world, m
+  int64_t t_ns = 0;                                                ///< stamp, ns
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();              ///< body origin in world, m
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< R_world_body (unit)
 
   /// The pose as the transform T_world_body.
@@ -37,9 +37,9 @@ void WriteTum(const std::string& path, const std::vector<StampedPose>& poses);
 
 /// Where KITTI poses get their stamps.
 struct KittiTiming {
-  std::string times_path;  ///< one time (s) per line, line k for pose k; empty = use period
-  double period_s = 0.1;   ///< time between poses when there is no times file, s (> 0)
-  int64_t start_t_ns = 0;  ///< stamp of pose 0 when there is no times file, ns
+  std::string times_path;   ///< one time (s) per line, line k for pose k; empty = use period
+  double period_s = 0.1;    ///< time between poses when there is no times file, s (> 0)
+  int64_t start_t_ns = 0;   ///< stamp of pose 0 when there is no times file, ns
   bool IsValid(std::string* why) const;
 };
 
