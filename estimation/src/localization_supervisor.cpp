@@ -129,6 +129,7 @@ std::string LocalizationSupervisor::StartGlobally(const NavState& start, bool gr
      << " s CPU)";
   return os.str();
 }
+
 void LocalizationSupervisor::SetOnMap(bool on_map, int64_t t_ns,
                                       const Eigen::Isometry3d& T_map_imu) {
   if (on_map == on_map_ || !started_) return;
@@ -145,11 +146,10 @@ void LocalizationSupervisor::SetOnMap(bool on_map, int64_t t_ns,
            T_map_imu);
 }
 
-
 void LocalizationSupervisor::Supervise(const std::function<PointCloud()>& sweep_imu,
                                        const registration::NeighborSearch& map,
-  if (!on_map_) return;  // no prior here to judge the scan by, or to relocalize in
                                        Estimator* estimator, ScanResult* result) {
+  if (!on_map_) return;  // no prior here to judge the scan by, or to relocalize in
   const ScanHealth& health = result->health;
   if (!health.good) ++scans_bad_health_;
   bad_scans_in_row_ = health.good ? 0 : bad_scans_in_row_ + 1;
@@ -216,8 +216,8 @@ bool LocalizationSupervisor::Relocalize(const PointCloud& sweep_imu,
   return true;
 }
 
-  if (!on_map_) return result.update.applied;  // odometry mode needs a map of its own
 bool LocalizationSupervisor::MapUpdateAllowed(const ScanResult& result) {
+  if (!on_map_) return result.update.applied;  // odometry mode needs a map of its own
   const double after_s = options_.update_after_s;
   if (after_s < 0.0 || NanosToSeconds(result.t_ns - start_t_ns_) < after_s) return false;
   if (!hybrid_started_) {

@@ -139,6 +139,9 @@ TEST(PcdXyzWriter, WritesOnlyWhenCommitted) {
   writer.Add(b);
   writer.Commit();
   EXPECT_EQ(writer.points(), 3u);
+  std::size_t files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.is_regular_file();
+  EXPECT_EQ(files, 1u);  // no body file left behind
   const CloudFile read = ReadCloud(dir + "/xyz.pcd");
   ASSERT_EQ(read.positions.size(), 3u);
   EXPECT_EQ(read.positions[0], Eigen::Vector3d(1, 2, 3));

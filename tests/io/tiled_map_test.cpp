@@ -164,7 +164,14 @@ TEST(MapTiler, StreamingTilerKeepsExactlyTheWholeMapThinnedAtOnce) {
   std::sort(expected.begin(), expected.end(), less);
   std::sort(tiled.begin(), tiled.end(), less);
   EXPECT_EQ(tiled, expected);
-  EXPECT_FALSE(fs::exists(dir + "/tiled/spill"));
+  std::size_t entries = 0;
+  for (const auto& e : fs::directory_iterator(dir + "/tiled")) {
+    ++entries;
+    EXPECT_TRUE(e.path().filename() == "index.json" || e.path().filename() == "tiles" ||
+                e.path().filename() == "overview.pcd")
+        << e.path();
+  }
+  EXPECT_EQ(entries, 3u);
 
   // The overview holds, for each of its voxels, the lowest map point in it.
   const PointCloud overview = ReadTiledMapOverview(dir + "/tiled", index);

@@ -190,7 +190,9 @@ TileMapSummary TileMap(const PositionChunks& next, const std::string& source,
   while (next(&chunk)) {
     for (const Eigen::Vector3d& p_world : chunk) {
       if (!have_origin) {
-        index.origin_world = ChooseOrigin({p_world}, options.origin_granularity_m);
+        index.origin_world = options.origin_world
+                                 ? *options.origin_world
+                                 : ChooseOrigin({p_world}, options.origin_granularity_m);
         have_origin = true;
       }
       const Eigen::Vector3f p = (p_world - index.origin_world).cast<float>();

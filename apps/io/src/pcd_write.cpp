@@ -157,6 +157,7 @@ void PcdXyzWriter::Commit() {
     file.stream().write(block.data(), body.gcount());
   }
   file.Commit();
+  std::remove(body_path_.c_str());
 }
 
 void WritePcd(const std::string& path, const CloudFile& cloud, CloudEncoding encoding) {

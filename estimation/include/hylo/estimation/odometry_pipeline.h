@@ -110,6 +110,7 @@ class OdometryPipeline {
   const mapping::MapManager& map() const { return map_; }
   mapping::MapManager& map() { return map_; }
   const Estimator& estimator() const { return *estimator_; }
+  const OdometryPipelineOptions& options() const { return options_; }
 
  private:
   // odometry_pipeline_start.cpp: true when the group's scan was consumed by the start.

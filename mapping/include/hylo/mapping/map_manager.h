@@ -66,7 +66,7 @@ class MapManager final : public registration::NeighborSearch {
   void SetOnDemand(bool on_demand) { on_demand_ = on_demand; }
   const TileStreamer* streamer() const { return streamer_.get(); }
   const TileCache* tile_cache() const { return cache_.get(); }
-  /// Keep the points the window deletes from the run's tree (FlattenWindowedOut).
+  /// Keep the points the window deletes from the run's tree (windowed_out()).
   void KeepWindowedOut(bool keep) { keep_windowed_out_ = keep; }
   const PointCloud& windowed_out() const { return windowed_out_; }
 
