@@ -54,6 +54,11 @@ void MapManager::BeginScan(const Eigen::Vector3f& position_map) {
   streamer_->TakeUpdate(&tiles_);
 }
 
+void MapManager::SetOnDemand(bool on_demand) {
+  on_demand_ = on_demand;
+  if (streamer_ != nullptr) streamer_->TakeUpdate(&tiles_);
+}
+
 bool MapManager::OnPriorMap(const Eigen::Vector3f& position_map) const {
   return streamer_ == nullptr || streamer_->OnMap(position_map);
 }
@@ -129,7 +134,9 @@ std::size_t MapManager::prior_size() const {
   return prior_ == nullptr ? 0 : prior_->Size();
 }
 
-std::size_t MapManager::Size() const { return run_.Size() + prior_size(); }
+std::size_t MapManager::Size() const {
+  return run_.Size() + (on_demand_ && cache_ != nullptr ? cache_->Size() : prior_size());
+}
 
 PointCloud MapManager::Flatten() const {
   PointCloud points = tiles_ != nullptr   ? tiles_->Flatten()

@@ -241,6 +241,7 @@ TEST_F(StreamerTest, TheMapManagerSearchesRunPointsAndTheTilesItHolds) {
   map.KNearest(far, 1, 1.f, &got);
   EXPECT_TRUE(got.empty());
   map.SetOnDemand(true);
+  EXPECT_EQ(map.Size(), map.run_size() + map.tile_cache()->Size());  // every tile searchable
   map.KNearest(far, 1, 1.f, &got);
   EXPECT_EQ(got.size(), 1u);
   EXPECT_TRUE(map.OnPriorMap(p));

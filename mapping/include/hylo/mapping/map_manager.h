@@ -62,8 +62,9 @@ class MapManager final : public registration::NeighborSearch {
   bool OnPriorMap(const Eigen::Vector3f& position_map) const;
   /// The loader's first failure ("" when none, or without a tiled prior).
   std::string prior_error() const;
-  /// Queries also read the tiles the set does not hold, synchronously (TileCache).
-  void SetOnDemand(bool on_demand) { on_demand_ = on_demand; }
+  /// Queries also read the tiles the set does not hold, synchronously (TileCache), and Size()
+  /// counts every tile. Either way the newest finished tiles are swapped in.
+  void SetOnDemand(bool on_demand);
   const TileStreamer* streamer() const { return streamer_.get(); }
   const TileCache* tile_cache() const { return cache_.get(); }
   /// Keep the points the window deletes from the run's tree (windowed_out()).
