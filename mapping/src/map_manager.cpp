@@ -55,6 +55,9 @@ void MapManager::BeginScan(const Eigen::Vector3f& position_map) {
 }
 
 void MapManager::SetOnDemand(bool on_demand) {
+  // Tiles read on demand are for the start and a lost vehicle: once tracking again, the
+  // memory goes back to the window.
+  if (on_demand_ && !on_demand && cache_ != nullptr) cache_->Clear();
   on_demand_ = on_demand;
   if (streamer_ != nullptr) streamer_->TakeUpdate(&tiles_);
 }

@@ -166,6 +166,12 @@ const IkdTree* TileCache::Get(int index) const {
   return cached_.back().tree.get();
 }
 
+void TileCache::Clear() {
+  cached_.clear();
+  cached_.shrink_to_fit();
+  cached_points_ = 0;
+}
+
 void TileCache::KNearest(const Eigen::Vector3f& query, int k, float max_distance,
                          std::vector<registration::Neighbor>* neighbors) const {
   KNearestPreferring(nullptr, query, k, max_distance, neighbors);

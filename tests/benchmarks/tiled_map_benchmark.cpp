@@ -14,6 +14,7 @@
 // the measurements run every time. Prints the figures and writes JSON (--json).
 //
 //   hylo_tiled_map_benchmark [--work DIR] [--json PATH] [--quick] [--generate-only]
+//                            [--reuse-tiles]
 
 #include <algorithm>
 #include <chrono>
@@ -21,6 +22,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -47,7 +49,7 @@ constexpr uint64_t kSeed = 1;
 constexpr double kSpeedMps = 2.0;
 
 struct Setup {
-  std::string work, map, tiles, config, full_bag, full_truth, short_bag, short_truth;
+  std::string work, map, tiles, config, config_no_global, full_bag, full_truth, short_bag, short_truth;
   Eigen::Vector2d road_start, road_end;
   double short_length_m = 200.0;
 };
@@ -63,6 +65,7 @@ Setup Generate(const std::string& work, bool quick, Report* report) {
   s.map = work + "/map.pcd";
   s.tiles = work + "/tiles";
   s.config = work + "/config.yaml";
+  s.config_no_global = work + "/config_no_global.yaml";
   fs::create_directories(work);
   RepeatedSiteOptions layout;
   if (quick) layout.copies_x = layout.copies_y = 2;
@@ -70,15 +73,25 @@ Setup Generate(const std::string& work, bool quick, Report* report) {
   s.road_start = Eigen::Vector2d(x, -5.0);
   s.road_end = Eigen::Vector2d(x, layout.copies_y * layout.period_m.y() - 30.0);
   if (quick) s.short_length_m = 60.0;
-  const sim::Site base = sim::BuildSite(kSeed, sim::TerrainOptions());
-  auto t0 = std::chrono::steady_clock::now();
-  const sim::Site site = RepeatedSite(base, layout, {s.road_start, s.road_end}, kSeed);
+  // The world is built only when something is missing (its terrain takes minutes).
+  std::unique_ptr<sim::Site> site;
+  auto world = [&]() -> const sim::Site& {
+    if (site == nullptr) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const sim::Site base = sim::BuildSite(kSeed, sim::TerrainOptions());
+      site = std::make_unique<sim::Site>(
+          RepeatedSite(base, layout, {s.road_start, s.road_end}, kSeed));
+      report->Set("generation", "terrain_s", Seconds(t0));
+    }
+    return *site;
+  };
   report->Set("generation", "copies", layout.copies_x * layout.copies_y);
-  report->Set("generation", "area_km2", (site.site_max_m - site.site_min_m).prod() * 1e-6);
-  report->Set("generation", "terrain_s", Seconds(t0));
+  report->Set("generation", "area_km2",
+              (layout.copies_x * layout.period_m.x()) * (layout.copies_y * layout.period_m.y()) *
+                  1e-6);
   if (!fs::exists(s.map)) {
-    t0 = std::chrono::steady_clock::now();
-    const SiteMapSummary m = WriteSiteMap(site, s.map, 0.1, 0.1, kSeed);
+    const auto t0 = std::chrono::steady_clock::now();
+    const SiteMapSummary m = WriteSiteMap(world(), s.map, 0.1, 0.1, kSeed);
     std::printf("map: %zu ground + %zu object points in %.0f s\n", m.ground_points,
                 m.object_points, Seconds(t0));
   }
@@ -93,8 +106,8 @@ Setup Generate(const std::string& work, bool quick, Report* report) {
     (full ? s.full_bag : s.short_bag) = sim::SessionBagPath(dir, sim::SessionId::kB);
     (full ? s.full_truth : s.short_truth) = sim::SessionTruthPath(dir, sim::SessionId::kB);
     if (fs::exists(sim::SessionManifestPath(dir, sim::SessionId::kB))) continue;
-    t0 = std::chrono::steady_clock::now();
-    const sim::SessionSummary d = sim::WriteSession(options, site, sim::SessionId::kB, dir);
+    const auto t0 = std::chrono::steady_clock::now();
+    const sim::SessionSummary d = sim::WriteSession(options, world(), sim::SessionId::kB, dir);
     std::printf("drive %s: %zu scans, %.0f m in %.0f s\n", dir.c_str(), d.scans, d.path_length_m,
                 Seconds(t0));
   }
@@ -103,6 +116,9 @@ Setup Generate(const std::string& work, bool quick, Report* report) {
   // A dense map of every registered scan grows with the drive; a memory benchmark leaves it out.
   config.pipeline.output.dense_map_voxel_m = 0.0;
   config::SaveRunConfig(s.config, config);
+  // The global localizer's raster covers the whole map: its share of the memory, measured.
+  config.pipeline.localization.global_enabled = false;
+  config::SaveRunConfig(s.config_no_global, config);
   return s;
 }
 
@@ -131,12 +147,13 @@ struct Localized {
 };
 
 Localized Localize(const Setup& s, const std::string& bag, const std::string& truth,
-                   const std::string& map, const std::string& name) {
+                   const std::string& map, const std::string& name, bool global = true) {
   const std::string out = s.work + "/runs/" + name;
   fs::remove_all(out);
   fs::create_directories(out);
   Localized r;
-  r.child = RunMeasured({kHylo, "localize", "--log", bag, "--map", map, "--config", s.config,
+  r.child = RunMeasured({kHylo, "localize", "--log", bag, "--map", map, "--config",
+                         global ? s.config : s.config_no_global,
                          "--guess", Guess(truth), "--out", out},
                         s.work + "/runs/" + name + ".log");
   if (r.child.exit_code != 0 || !fs::exists(out + "/summary.json")) {
@@ -252,11 +269,12 @@ std::vector<std::pair<std::string, std::size_t>> WriteCorridors(const Setup& s, 
 int main(int argc, char** argv) {
   using namespace hylo::benchmarks;
   std::string work = "/tmp/hylo_tiled_bench", json;
-  bool quick = false, generate_only = false;
+  bool quick = false, generate_only = false, reuse_tiles = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--quick") quick = true;
     if (a == "--generate-only") generate_only = true;
+    if (a == "--reuse-tiles") reuse_tiles = true;
     if (a == "--work" && i + 1 < argc) work = argv[++i];
     if (a == "--json" && i + 1 < argc) json = argv[++i];
   }
@@ -268,19 +286,24 @@ int main(int argc, char** argv) {
   report.Set("map", "file_gb", fs::file_size(s.map) / 1e9);
   report.Set("map", "points", hylo::io::ReadCloudInfo(s.map).points);
 
-  const ChildRun tile = RunMeasured({kHylo, "tile", "--in", s.map, "--out", s.tiles, "--json",
-                                     s.work + "/tile.json"},
-                                    s.work + "/tile.log");
-  const hylo::io::Json t = hylo::io::ReadJsonFile(s.work + "/tile.json");
-  report.Set("hylo_tile", "exit_code", tile.exit_code);
-  report.Set("hylo_tile", "points_read", hylo::io::NumberAt(t, "points_read"));
-  report.Set("hylo_tile", "points_written", hylo::io::NumberAt(t, "points_written"));
-  report.Set("hylo_tile", "tiles", hylo::io::NumberAt(t, "tiles"));
-  report.Set("hylo_tile", "wall_s", tile.wall_s);
-  report.Set("hylo_tile", "cpu_s", tile.cpu_s);
-  report.Set("hylo_tile", "points_per_s_wall", hylo::io::NumberAt(t, "points_read") / tile.wall_s);
-  report.Set("hylo_tile", "points_per_s_cpu", hylo::io::NumberAt(t, "points_read") / tile.cpu_s);
-  report.Set("hylo_tile", "peak_rss_mb", tile.peak_rss_mb);
+  // `hylo tile` on the whole map (--reuse-tiles: the tiles of an earlier run, not measured).
+  if (!reuse_tiles || !hylo::io::IsTiledMap(s.tiles)) {
+    const ChildRun tile = RunMeasured({kHylo, "tile", "--in", s.map, "--out", s.tiles, "--json",
+                                       s.work + "/tile.json"},
+                                      s.work + "/tile.log");
+    const hylo::io::Json t = hylo::io::ReadJsonFile(s.work + "/tile.json");
+    report.Set("hylo_tile", "exit_code", tile.exit_code);
+    report.Set("hylo_tile", "points_read", hylo::io::NumberAt(t, "points_read"));
+    report.Set("hylo_tile", "points_written", hylo::io::NumberAt(t, "points_written"));
+    report.Set("hylo_tile", "tiles", hylo::io::NumberAt(t, "tiles"));
+    report.Set("hylo_tile", "wall_s", tile.wall_s);
+    report.Set("hylo_tile", "cpu_s", tile.cpu_s);
+    report.Set("hylo_tile", "points_per_s_wall", hylo::io::NumberAt(t, "points_read") / tile.wall_s);
+    report.Set("hylo_tile", "points_per_s_cpu", hylo::io::NumberAt(t, "points_read") / tile.cpu_s);
+    report.Set("hylo_tile", "peak_rss_mb", tile.peak_rss_mb);
+  }
+  report.Set("tiles", "points", hylo::io::ReadTiledMapIndex(s.tiles).points);
+  report.Set("tiles", "tiles", hylo::io::ReadTiledMapIndex(s.tiles).tiles.size());
 
   const Localized full = Localize(s, s.full_bag, s.full_truth, s.tiles, "tiled_full");
   ReportRun("drive_tiled", full, &report);
@@ -288,6 +311,9 @@ int main(int argc, char** argv) {
 
   const Localized tiled = Localize(s, s.short_bag, s.short_truth, s.tiles, "tiled_short");
   ReportRun("short_tiled", tiled, &report);
+  const Localized no_global =
+      Localize(s, s.short_bag, s.short_truth, s.tiles, "tiled_short_no_global", false);
+  ReportRun("short_tiled_no_global_raster", no_global, &report);
   const double radius = hylo::io::NumberAt(tiled.summary, "prior_map_tiles.load_radius_m");
   std::vector<std::pair<double, double>> points_rss;
   Localized whole;
@@ -307,7 +333,7 @@ int main(int argc, char** argv) {
   }
   const double n = static_cast<double>(points_rss.size());
   const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-  const double map_points = report.Get("hylo_tile", "points_written");
+  const double map_points = report.Get("tiles", "points");
   report.Set("whole_map_loading", "bytes_per_point", slope * 1024 * 1024);
   report.Set("whole_map_loading", "intercept_mb", (sy - slope * sx) / n);
   report.Set("whole_map_loading", "extrapolated_peak_rss_mb_whole_map",

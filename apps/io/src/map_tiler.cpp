@@ -193,6 +193,7 @@ TileMapSummary TileMap(const PositionChunks& next, const std::string& source,
         index.origin_world = options.origin_world
                                  ? *options.origin_world
                                  : ChooseOrigin({p_world}, options.origin_granularity_m);
+        index.origin_world += Eigen::Vector3d::Zero();  // -0 (a rounded small negative) is 0
         have_origin = true;
       }
       const Eigen::Vector3f p = (p_world - index.origin_world).cast<float>();

@@ -63,7 +63,8 @@ class MapManager final : public registration::NeighborSearch {
   /// The loader's first failure ("" when none, or without a tiled prior).
   std::string prior_error() const;
   /// Queries also read the tiles the set does not hold, synchronously (TileCache), and Size()
-  /// counts every tile. Either way the newest finished tiles are swapped in.
+  /// counts every tile; switched off, the cache is emptied. Either way the newest finished
+  /// tiles are swapped in.
   void SetOnDemand(bool on_demand);
   const TileStreamer* streamer() const { return streamer_.get(); }
   const TileCache* tile_cache() const { return cache_.get(); }

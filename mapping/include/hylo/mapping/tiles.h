@@ -139,6 +139,8 @@ class TileCache final : public registration::NeighborSearch {
   void KNearestPreferring(const TileSet* preferred, const Eigen::Vector3f& query, int k,
                           float max_distance, std::vector<registration::Neighbor>* neighbors) const;
   std::size_t tiles_loaded() const { return loads_; }
+  /// Drops every cached tile (the memory returns; later queries read them again).
+  void Clear();
 
  private:
   const IkdTree* Get(int index) const;  // index into source_->tiles()
