@@ -76,7 +76,8 @@ void RunCraft(CraftArgs& args) {
   result.points_world = std::move(clean.positions);  // for the summary's counts
   std::fprintf(stderr, "wrote %s\n", args.out_path.c_str());
   io::Json summary = SummaryJson(args, result);
-  if (!args.tiles.empty()) summary["tiles"] = WriteTiles(args.out_path, args.tiles, args.tile_options);
+  if (!args.tiles.empty())
+    summary["tiles"] = WriteTiles(args.out_path, args.tiles, args.tile_options);
   MaybeWriteJson(args.json_path, summary);
 }
 

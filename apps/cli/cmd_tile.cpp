@@ -84,7 +84,8 @@ void AddTileCommand(CLI::App& root) {
       ->required();
   AddTileOptions(cmd, &args->options, "");
   cmd->add_option("--json", args->json, "also write the summary to this JSON file");
-  cmd->callback([args]() { MaybeWriteJson(args->json, WriteTiles(args->in, args->out, args->options)); });
+  cmd->callback(
+      [args]() { MaybeWriteJson(args->json, WriteTiles(args->in, args->out, args->options)); });
 }
 
 }  // namespace hylo::cli

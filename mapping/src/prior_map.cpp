@@ -21,8 +21,7 @@ bool PriorMapOptions::IsValid(std::string* why) const {
   } else if (!(tile_unload_margin_m >= 0.0) || !std::isfinite(tile_unload_margin_m)) {
     os << "tile_unload_margin_m = " << tile_unload_margin_m << ": must be finite and >= 0";
   } else if (!(tile_cache_million_points > 0.0) || !std::isfinite(tile_cache_million_points)) {
-    os << "tile_cache_million_points = " << tile_cache_million_points
-       << ": must be finite and > 0";
+    os << "tile_cache_million_points = " << tile_cache_million_points << ": must be finite and > 0";
   }
   if (why != nullptr) *why = os.str();
   return os.str().empty();

@@ -64,19 +64,19 @@ TEST_F(TileCliTest, TilesAMapAndSaysHowFastAndHowBig) {
   EXPECT_GT(io::NumberAt(summary, "points_per_s"), 0.0);
   EXPECT_GT(io::NumberAt(summary, "peak_memory_mb"), 0.0);
   // A tile size that is not a whole number of voxels is refused, naming the option.
-  EXPECT_EQ(Hylo("tile --in " + Path("map.pcd") + " --out " + Path("t2") +
-                     " --tile-size 20 --voxel 0.3",
-                 &error),
-            1);
+  EXPECT_EQ(
+      Hylo("tile --in " + Path("map.pcd") + " --out " + Path("t2") + " --tile-size 20 --voxel 0.3",
+           &error),
+      1);
   EXPECT_NE(error.find("tile_size_m"), std::string::npos) << error;
   EXPECT_FALSE(fs::exists(Path("t2")));
 }
 
 TEST_F(TileCliTest, BrokenTiledMapsAreNamedBeforeAnyOdometry) {
   std::string error;
-  ASSERT_EQ(Hylo("tile --in " + Path("map.pcd") + " --out " + Path("tiles") + " --tile-size 20",
-                 &error),
-            0)
+  ASSERT_EQ(
+      Hylo("tile --in " + Path("map.pcd") + " --out " + Path("tiles") + " --tile-size 20", &error),
+      0)
       << error;
   const io::TiledMapIndex index = io::ReadTiledMapIndex(Path("tiles"));
   auto broken_copy = [&](const std::string& name) {

@@ -57,7 +57,8 @@ const PriorFiles& SharedFiles() {
     f.pcd = dir + "/prior.pcd";
     f.tiled = dir + "/prior_tiles";
     io::CloudFile cloud;
-    for (const Eigen::Vector3f& p : SharedPrior().points_map) cloud.positions.push_back(p.cast<double>());
+    for (const Eigen::Vector3f& p : SharedPrior().points_map)
+      cloud.positions.push_back(p.cast<double>());
     io::WriteCloud(f.pcd, cloud);
     io::TileMapOptions options;
     options.tile_size_m = 20.0;  // ~40 tiles over the site: they stream during the drive
@@ -98,9 +99,9 @@ struct SessionRun {
 
 // Session B localized in the map at `map_path` (file or tiled directory) from `guess`.
 SessionRun RunSessionB(const std::string& map_path, const sim::SimulationOptions& sim_options,
-                Estimator::Backend backend, double update_after_s,
-                const Eigen::Isometry3d& guess,
-                const mapping::PriorMapOptions& prior_options = {}) {
+                       Estimator::Backend backend, double update_after_s,
+                       const Eigen::Isometry3d& guess,
+                       const mapping::PriorMapOptions& prior_options = {}) {
   estimation::OdometryPipelineOptions options = PipelineOptionsFor(sim_options);
   options.estimator.backend = backend;
   options.localization.update_after_s = update_after_s;
@@ -138,13 +139,13 @@ TEST_P(TiledLocalization, GivesTheUntiledMapsTrajectory) {
   EXPECT_EQ(tiled.prior.num_kept, whole.prior.num_kept);
   EXPECT_EQ(tiled.prior.origin_world, whole.prior.origin_world);
   const auto stats = tiled.sink->pipeline.map().streamer()->stats();
-  std::printf("[%s] ATE whole map %.5f m, tiled %.5f m (rotation %.4f / %.4f deg); %zu scans / "
-              "%zu; tiles loaded %zu, unloaded %zu, at most %zu tiles (%zu of %zu points) held\n",
-              estimation::ToString(GetParam()).c_str(), whole.ate.rmse_m, tiled.ate.rmse_m,
-              whole.ate.rotation_rmse_deg, tiled.ate.rotation_rmse_deg,
-              tiled.sink->results.size(), whole.sink->results.size(), stats.tiles_loaded,
-              stats.tiles_unloaded, stats.max_tiles_held, stats.max_points_held,
-              whole.prior.num_kept);
+  std::printf(
+      "[%s] ATE whole map %.5f m, tiled %.5f m (rotation %.4f / %.4f deg); %zu scans / "
+      "%zu; tiles loaded %zu, unloaded %zu, at most %zu tiles (%zu of %zu points) held\n",
+      estimation::ToString(GetParam()).c_str(), whole.ate.rmse_m, tiled.ate.rmse_m,
+      whole.ate.rotation_rmse_deg, tiled.ate.rotation_rmse_deg, tiled.sink->results.size(),
+      whole.sink->results.size(), stats.tiles_loaded, stats.tiles_unloaded, stats.max_tiles_held,
+      stats.max_points_held, whole.prior.num_kept);
   EXPECT_GT(tiled.ate.path_length_m, 100.0);
   EXPECT_EQ(tiled.sink->results.size(), whole.sink->results.size());
   // The tiles hold the same points and the search over them is exact; what differs is the
@@ -174,7 +175,8 @@ TEST(TiledLocalizationOffMap, AHoleInTheTilesIsCrossedInOdometryModeAndSaidSo) {
   const mapping::TileGrid grid(index.tile_size_m);
   std::vector<mapping::TileKey> hole;
   for (double x = 62.0; x <= 78.0; x += 0.5) {
-    const Eigen::Vector3d p_map = SharedPrior().T_site_map.inverse() * Eigen::Vector3d(x, 47.0, 0.0);
+    const Eigen::Vector3d p_map =
+        SharedPrior().T_site_map.inverse() * Eigen::Vector3d(x, 47.0, 0.0);
     hole.push_back(grid.KeyOf((p_map - index.origin_world).cast<float>()));
   }
   std::vector<io::TiledMapTile> kept;
@@ -188,7 +190,7 @@ TEST(TiledLocalizationOffMap, AHoleInTheTilesIsCrossedInOdometryModeAndSaidSo) {
   index.tiles = kept;
   io::WriteTiledMapIndex(dir, index);
   const SessionRun run = RunSessionB(dir, EastwardB(), Estimator::Backend::kIeskf, -1.0,
-                              PerturbedStart(EastwardB(), 0.5, -0.5, 5.0));
+                                     PerturbedStart(EastwardB(), 0.5, -0.5, 5.0));
   const auto& pipeline = run.sink->pipeline;
   ASSERT_NE(pipeline.status(), estimation::OdometryPipeline::Status::kFailed) << pipeline.message();
   std::vector<LocalizationEvent::Kind> kinds;

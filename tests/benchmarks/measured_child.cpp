@@ -52,7 +52,8 @@ ChildRun RunMeasured(const std::vector<std::string>& argv, const std::string& lo
     int status = 0;
     rusage usage{};
     const pid_t done = ::wait4(pid, &status, WNOHANG, &usage);
-    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double t =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (done == pid) {
       run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
       run.wall_s = t;

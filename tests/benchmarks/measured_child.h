@@ -9,12 +9,12 @@
 namespace hylo::benchmarks {
 
 struct RssSample {
-  double t_s = 0.0;    ///< since the start, s
-  double rss_mb = 0.0; ///< resident set, MB
+  double t_s = 0.0;     ///< since the start, s
+  double rss_mb = 0.0;  ///< resident set, MB
 };
 
 struct ChildRun {
-  int exit_code = -1;          ///< 128 + signal when killed
+  int exit_code = -1;  ///< 128 + signal when killed
   double wall_s = 0.0;
   double cpu_s = 0.0;          ///< user + system CPU of the child, s
   double peak_rss_mb = 0.0;    ///< ru_maxrss

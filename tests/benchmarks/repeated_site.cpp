@@ -65,7 +65,8 @@ sim::Site RepeatedSite(const sim::Site& base, const RepeatedSiteOptions& options
         for (const sim::Primitive& part : object.parts) annex = annex || InAnnex(base, part);
         if (annex) continue;
         sim::SiteObject copy = object;
-        for (sim::Primitive& part : copy.parts) part = Moved(part, Eigen::Vector3d(d.x(), d.y(), 0));
+        for (sim::Primitive& part : copy.parts)
+          part = Moved(part, Eigen::Vector3d(d.x(), d.y(), 0));
         site.objects.push_back(copy);
       }
     }
@@ -83,8 +84,8 @@ sim::Site RepeatedSite(const sim::Site& base, const RepeatedSiteOptions& options
   return site;
 }
 
-SiteMapSummary WriteSiteMap(const sim::Site& site, const std::string& path,
-                            double ground_spacing_m, double object_spacing_m, uint64_t seed) {
+SiteMapSummary WriteSiteMap(const sim::Site& site, const std::string& path, double ground_spacing_m,
+                            double object_spacing_m, uint64_t seed) {
   const sim::World world(site.terrain, sim::SessionPrimitives(site, sim::SessionId::kA));
   const sim::Terrain& terrain = world.terrain();
   io::PcdXyzWriter writer(path);

@@ -19,8 +19,8 @@
 namespace hylo::benchmarks {
 
 struct RepeatedSiteOptions {
-  int copies_x = 8;                                        ///< copies along x
-  int copies_y = 9;                                        ///< copies along y
+  int copies_x = 8;                                          ///< copies along x
+  int copies_y = 9;                                          ///< copies along y
   Eigen::Vector2d period_m = Eigen::Vector2d(138.0, 115.0);  ///< copy spacing, m
   double terrain_resolution_m = 0.4;  ///< ray-cast ground grid, m (the Fast simulator's)
 };
@@ -43,7 +43,7 @@ struct SiteMapSummary {
 /// centres, points inside a structure left out) and the structures' surfaces at about one
 /// point per `object_spacing_m`^2 (sim::ReferenceCloud, band by band), streamed to a binary
 /// PCD (float32 x y z, the site frame). Memory: one band of object points.
-SiteMapSummary WriteSiteMap(const sim::Site& site, const std::string& path,
-                            double ground_spacing_m, double object_spacing_m, uint64_t seed);
+SiteMapSummary WriteSiteMap(const sim::Site& site, const std::string& path, double ground_spacing_m,
+                            double object_spacing_m, uint64_t seed);
 
 }  // namespace hylo::benchmarks

@@ -49,7 +49,8 @@ constexpr uint64_t kSeed = 1;
 constexpr double kSpeedMps = 2.0;
 
 struct Setup {
-  std::string work, map, tiles, config, config_no_global, full_bag, full_truth, short_bag, short_truth;
+  std::string work, map, tiles, config, config_no_global, full_bag, full_truth, short_bag,
+      short_truth;
   Eigen::Vector2d road_start, road_end;
   double short_length_m = 200.0;
 };
@@ -86,14 +87,14 @@ Setup Generate(const std::string& work, bool quick, Report* report) {
     return *site;
   };
   report->Set("generation", "copies", layout.copies_x * layout.copies_y);
-  report->Set("generation", "area_km2",
-              (layout.copies_x * layout.period_m.x()) * (layout.copies_y * layout.period_m.y()) *
-                  1e-6);
+  report->Set(
+      "generation", "area_km2",
+      (layout.copies_x * layout.period_m.x()) * (layout.copies_y * layout.period_m.y()) * 1e-6);
   if (!fs::exists(s.map)) {
     const auto t0 = std::chrono::steady_clock::now();
     const SiteMapSummary m = WriteSiteMap(world(), s.map, 0.1, 0.1, kSeed);
-    std::printf("map: %zu ground + %zu object points in %.0f s\n", m.ground_points,
-                m.object_points, Seconds(t0));
+    std::printf("map: %zu ground + %zu object points in %.0f s\n", m.ground_points, m.object_points,
+                Seconds(t0));
   }
   sim::SimulationOptions options;
   options.seed = kSeed;
@@ -101,8 +102,8 @@ Setup Generate(const std::string& work, bool quick, Report* report) {
   const double length = (s.road_end - s.road_start).norm();
   for (const bool full : {true, false}) {
     const std::string dir = work + (full ? "/drive_full" : "/drive_short");
-    options.duration_b_s = options.trajectory.standstill_s + 5.0 +
-                           (full ? length : s.short_length_m) / kSpeedMps;
+    options.duration_b_s =
+        options.trajectory.standstill_s + 5.0 + (full ? length : s.short_length_m) / kSpeedMps;
     (full ? s.full_bag : s.short_bag) = sim::SessionBagPath(dir, sim::SessionId::kB);
     (full ? s.full_truth : s.short_truth) = sim::SessionTruthPath(dir, sim::SessionId::kB);
     if (fs::exists(sim::SessionManifestPath(dir, sim::SessionId::kB))) continue;
@@ -111,8 +112,8 @@ Setup Generate(const std::string& work, bool quick, Report* report) {
     std::printf("drive %s: %zu scans, %.0f m in %.0f s\n", dir.c_str(), d.scans, d.path_length_m,
                 Seconds(t0));
   }
-  config::RunConfig config = config::LoadRunConfig(std::string(HYLO_SOURCE_DIR) +
-                                                   "/config/sim_vlp16.yaml");
+  config::RunConfig config =
+      config::LoadRunConfig(std::string(HYLO_SOURCE_DIR) + "/config/sim_vlp16.yaml");
   // A dense map of every registered scan grows with the drive; a memory benchmark leaves it out.
   config.pipeline.output.dense_map_voxel_m = 0.0;
   config::SaveRunConfig(s.config, config);
@@ -152,18 +153,18 @@ Localized Localize(const Setup& s, const std::string& bag, const std::string& tr
   fs::remove_all(out);
   fs::create_directories(out);
   Localized r;
-  r.child = RunMeasured({kHylo, "localize", "--log", bag, "--map", map, "--config",
-                         global ? s.config : s.config_no_global,
-                         "--guess", Guess(truth), "--out", out},
-                        s.work + "/runs/" + name + ".log");
+  r.child =
+      RunMeasured({kHylo, "localize", "--log", bag, "--map", map, "--config",
+                   global ? s.config : s.config_no_global, "--guess", Guess(truth), "--out", out},
+                  s.work + "/runs/" + name + ".log");
   if (r.child.exit_code != 0 || !fs::exists(out + "/summary.json")) {
     std::printf("%s: hylo localize exited %d (see %s.log)\n", name.c_str(), r.child.exit_code,
                 (s.work + "/runs/" + name).c_str());
     return r;
   }
   r.summary = io::ReadJsonFile(out + "/summary.json");
-  const evaluation::AteResult ate =
-      evaluation::ComputeAte(Timed(io::ReadTum(out + "/trajectory.tum")), Timed(io::ReadTum(truth)));
+  const evaluation::AteResult ate = evaluation::ComputeAte(
+      Timed(io::ReadTum(out + "/trajectory.tum")), Timed(io::ReadTum(truth)));
   if (ate.ok) r.ate_m = ate.rmse_m;
   return r;
 }
@@ -288,9 +289,9 @@ int main(int argc, char** argv) {
 
   // `hylo tile` on the whole map (--reuse-tiles: the tiles of an earlier run, not measured).
   if (!reuse_tiles || !hylo::io::IsTiledMap(s.tiles)) {
-    const ChildRun tile = RunMeasured({kHylo, "tile", "--in", s.map, "--out", s.tiles, "--json",
-                                       s.work + "/tile.json"},
-                                      s.work + "/tile.log");
+    const ChildRun tile = RunMeasured(
+        {kHylo, "tile", "--in", s.map, "--out", s.tiles, "--json", s.work + "/tile.json"},
+        s.work + "/tile.log");
     const hylo::io::Json t = hylo::io::ReadJsonFile(s.work + "/tile.json");
     report.Set("hylo_tile", "exit_code", tile.exit_code);
     report.Set("hylo_tile", "points_read", hylo::io::NumberAt(t, "points_read"));
@@ -298,7 +299,8 @@ int main(int argc, char** argv) {
     report.Set("hylo_tile", "tiles", hylo::io::NumberAt(t, "tiles"));
     report.Set("hylo_tile", "wall_s", tile.wall_s);
     report.Set("hylo_tile", "cpu_s", tile.cpu_s);
-    report.Set("hylo_tile", "points_per_s_wall", hylo::io::NumberAt(t, "points_read") / tile.wall_s);
+    report.Set("hylo_tile", "points_per_s_wall",
+               hylo::io::NumberAt(t, "points_read") / tile.wall_s);
     report.Set("hylo_tile", "points_per_s_cpu", hylo::io::NumberAt(t, "points_read") / tile.cpu_s);
     report.Set("hylo_tile", "peak_rss_mb", tile.peak_rss_mb);
   }
@@ -342,7 +344,8 @@ int main(int argc, char** argv) {
   const double ratio = report.Get("short_tiled", "cpu_ms_per_scan_p99") /
                        report.Get("short_whole_corridor_4q", "cpu_ms_per_scan_p99");
   report.Set("targets", "peak_rss_mb (<= 1500)", report.Get("drive_tiled", "peak_rss_mb"));
-  report.Set("targets", "first_pose_after_s (<= 5)", report.Get("drive_tiled", "first_pose_after_s"));
+  report.Set("targets", "first_pose_after_s (<= 5)",
+             report.Get("drive_tiled", "first_pose_after_s"));
   report.Set("targets", "cpu_p99_tiled_over_in_memory (<= 1.3)", ratio);
   report.Set("targets", "ate_short_tiled_m", report.Get("short_tiled", "ate_m"));
   report.Set("targets", "ate_short_in_memory_m", report.Get("short_whole_corridor_4q", "ate_m"));

@@ -68,7 +68,8 @@ PointCloud Scene(unsigned seed) {
   for (int i = 0; i < 40000; ++i) {
     const Eigen::Vector3f p(x(rng), y(rng), 0.f);
     if (p.x() > 20.f && p.x() < 40.f && p.y() > 0.f) continue;  // a hole in the map
-    points.emplace_back(p.x(), p.y(), 0.2f * std::sin(p.x()) + (u(rng) < 0.1f ? 4.f * u(rng) : 0.f));
+    points.emplace_back(p.x(), p.y(),
+                        0.2f * std::sin(p.x()) + (u(rng) < 0.1f ? 4.f * u(rng) : 0.f));
   }
   for (float e = -60.f; e <= 60.f; e += 10.f) points.emplace_back(e, 10.f * u(rng), 1.f);
   return points;
@@ -89,9 +90,11 @@ void ExpectSameNeighbours(const registration::NeighborSearch& truth,
     tiles.KNearest(q, k, max_distance, &got);
     ASSERT_EQ(got.size(), want.size()) << "query " << q.transpose() << " k " << k;
     for (std::size_t j = 0; j < want.size(); ++j) {
-      ASSERT_EQ(got[j].squared_distance, want[j].squared_distance) << "query " << i << " rank " << j;
-      const bool tie = (j > 0 && want[j - 1].squared_distance == want[j].squared_distance) ||
-                       (j + 1 < want.size() && want[j + 1].squared_distance == want[j].squared_distance);
+      ASSERT_EQ(got[j].squared_distance, want[j].squared_distance)
+          << "query " << i << " rank " << j;
+      const bool tie =
+          (j > 0 && want[j - 1].squared_distance == want[j].squared_distance) ||
+          (j + 1 < want.size() && want[j + 1].squared_distance == want[j].squared_distance);
       if (!tie) {
         ASSERT_EQ(got[j].point, want[j].point) << "query " << i << " rank " << j;
       }
@@ -103,7 +106,8 @@ TEST(TileSet, FindsTheSameNeighboursAsOneSearchOverAllPoints) {
   const PointCloud points = Scene(1);
   const MemorySource source(points, 10.0);
   std::vector<LoadedTile> loaded;
-  for (const TileInfo& info : source.tiles()) loaded.push_back(BuildTile(info, source.Load(info.key)));
+  for (const TileInfo& info : source.tiles())
+    loaded.push_back(BuildTile(info, source.Load(info.key)));
   const TileSet set(10.0, loaded);
   EXPECT_EQ(set.Size(), points.size());
   IkdTree truth;
@@ -181,8 +185,8 @@ TEST_F(StreamerTest, TilesAppearAndDisappearAsThePositionMoves) {
   EXPECT_TRUE(streamer.error().empty());
   // Where the map has tiles, and where it has none.
   EXPECT_TRUE(streamer.OnMap(b));
-  EXPECT_FALSE(streamer.OnMap(Eigen::Vector3f(30.f, 20.f, 0.f)));   // the hole
-  EXPECT_FALSE(streamer.OnMap(Eigen::Vector3f(500.f, 0.f, 0.f)));   // far outside
+  EXPECT_FALSE(streamer.OnMap(Eigen::Vector3f(30.f, 20.f, 0.f)));  // the hole
+  EXPECT_FALSE(streamer.OnMap(Eigen::Vector3f(500.f, 0.f, 0.f)));  // far outside
 }
 
 TEST_F(StreamerTest, AFailedLoadIsReportedAndStopsTheLoader) {

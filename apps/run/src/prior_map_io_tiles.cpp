@@ -44,15 +44,17 @@ class FileTileSource final : public mapping::TileSource {
 
   PointCloud Load(const mapping::TileKey& key) const override {
     const int i = lookup_.Find(key);
-    if (i < 0) throw std::runtime_error(dir_ + ": no tile " + std::to_string(key.ix) + " " +
-                                        std::to_string(key.iy));
+    if (i < 0)
+      throw std::runtime_error(dir_ + ": no tile " + std::to_string(key.ix) + " " +
+                               std::to_string(key.iy));
     PointCloud points;
     for (const auto& [dir, tile] : parts_[static_cast<std::size_t>(i)]) {
       const PointCloud part = io::ReadTiledMapTile(dir, *tile);
       points.insert(points.end(), part.begin(), part.end());
     }
-    return thin_voxel_m_ > 0.0 ? registration::UniformSample(points, static_cast<float>(thin_voxel_m_))
-                               : points;
+    return thin_voxel_m_ > 0.0
+               ? registration::UniformSample(points, static_cast<float>(thin_voxel_m_))
+               : points;
   }
 
   const io::TiledMapIndex& index() const { return index_; }
@@ -112,14 +114,14 @@ mapping::PriorMap LoadTiledPriorMap(const std::string& dir, const mapping::Prior
   auto source = std::make_shared<FileTileSource>(dir, index, thin);
   mapping::TileStreamerOptions streamer_options;
   const estimation::OdometryPipelineOptions& p = pipeline->options();
-  streamer_options.load_radius_m = options.tile_load_radius_m > 0.0
-                                       ? options.tile_load_radius_m
-                                       : p.preprocess.max_range_m + p.planes.max_neighbor_distance_m;
+  streamer_options.load_radius_m =
+      options.tile_load_radius_m > 0.0
+          ? options.tile_load_radius_m
+          : p.preprocess.max_range_m + p.planes.max_neighbor_distance_m;
   streamer_options.unload_margin_m = options.tile_unload_margin_m;
   auto streamer = std::make_shared<mapping::TileStreamer>(source, streamer_options);
-  const PointCloud overview = p.localization.global_enabled
-                                  ? io::ReadTiledMapOverview(dir, index)
-                                  : PointCloud();
+  const PointCloud overview =
+      p.localization.global_enabled ? io::ReadTiledMapOverview(dir, index) : PointCloud();
   pipeline->SetTiledPriorMap(streamer, overview,
                              static_cast<std::size_t>(options.tile_cache_million_points * 1e6));
   // Hybrid mode over a tiled prior keeps what the run's window drops (WriteAddedTiles).

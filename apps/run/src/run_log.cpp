@@ -223,9 +223,9 @@ RunResult RunLog(const RunRequest& request) {
       j["prior_map_tiles"] = TiledPriorJson(pipeline);
       j["prior_map_tiles"]["added_points_written"] = tiles_added;
     }
-    const auto reference = PriorSearch(
-        prior, pipeline,
-        static_cast<std::size_t>(config.prior_map.tile_cache_million_points * 1e6));
+    const auto reference =
+        PriorSearch(prior, pipeline,
+                    static_cast<std::size_t>(config.prior_map.tile_cache_million_points * 1e6));
     j["c2c"] = CloudToCloudJson(dense, *reference, request.c2c_max_distance_m);
   }
   io::WriteJsonFile(request.out_dir + "/summary.json", j);

@@ -28,9 +28,9 @@ struct TileMapOptions {
   double overview_voxel_m = 0.5;        ///< overview for the global localizer's raster (lowest
                                         ///< point per voxel), m; 0: no overview
   double origin_granularity_m = 100.0;  ///< local origin = first finite point rounded to this, m
-  std::optional<Eigen::Vector3d> origin_world;  ///< or this origin (tiles that must share
-                                                ///< another tiled map's grid), m
-  std::size_t chunk_points = std::size_t{1} << 20;         ///< points read at a time (> 0)
+  std::optional<Eigen::Vector3d> origin_world;      ///< or this origin (tiles that must share
+                                                    ///< another tiled map's grid), m
+  std::size_t chunk_points = std::size_t{1} << 20;  ///< points read at a time (> 0)
   std::size_t spill_buffer_points = std::size_t{1} << 22;  ///< points buffered before they are
                                                            ///< appended to the spill files (> 0)
   bool IsValid(std::string* why) const;
