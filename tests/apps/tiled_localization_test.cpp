@@ -151,8 +151,10 @@ TEST_P(TiledLocalization, GivesTheUntiledMapsTrajectory) {
   // The tiles hold the same points and the search over them is exact; what differs is the
   // map beyond 60 m, and tiles arriving a scan later than the whole map had them: within 1 mm.
   EXPECT_NEAR(tiled.ate.rmse_m, whole.ate.rmse_m, 1e-3);
+  // This site is small for the window (70 m around the vehicle covers most of it at times):
+  // what must show is tiles leaving and coming back as the vehicle moves.
   EXPECT_GT(stats.tiles_unloaded, 0u);
-  EXPECT_LT(stats.max_points_held, 0.9 * whole.prior.num_kept);  // the window is not the map
+  EXPECT_GT(stats.tiles_loaded, tiled.sink->pipeline.map().streamer()->source().tiles().size());
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, TiledLocalization,
