@@ -1,5 +1,6 @@
-// `hylo craft --in RAW --out CLEAN`: uniform sampling + moving least squares smoothing of a raw
-// map, with normals, and a JSON summary.
+// `hylo craft --in RAW --out CLEAN [--tiles DIR]`: uniform sampling + moving least squares
+// smoothing of a raw map, with normals, and a JSON summary; --tiles also writes the crafted map
+// as a tiled map (`hylo tile`).
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -7,12 +8,15 @@
 #include "commands.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/terrain/craft.h"
+#include "tile_output.h"
 
 namespace hylo::cli {
 namespace {
 
 struct CraftArgs {
   std::string in_path, out_path, json_path;
+  std::string tiles;  // also write the crafted map as a tiled map here
+  io::TileMapOptions tile_options;
   terrain::CraftOptions options;
   bool no_normals = false;
 };
@@ -71,7 +75,10 @@ void RunCraft(CraftArgs& args) {
   io::WriteCloud(args.out_path, clean, io::CloudEncoding::kBinary);
   result.points_world = std::move(clean.positions);  // for the summary's counts
   std::fprintf(stderr, "wrote %s\n", args.out_path.c_str());
-  MaybeWriteJson(args.json_path, SummaryJson(args, result));
+  io::Json summary = SummaryJson(args, result);
+  if (!args.tiles.empty())
+    summary["tiles"] = WriteTiles(args.out_path, args.tiles, args.tile_options);
+  MaybeWriteJson(args.json_path, summary);
 }
 
 }  // namespace
@@ -101,6 +108,8 @@ void AddCraftCommand(CLI::App& root) {
   cmd->add_option("--threads", args.options.num_threads, "MLS threads")->capture_default_str();
   cmd->add_flag("--no-normals", args.no_normals, "do not write normals");
   cmd->add_option("--json", args.json_path, "write a JSON summary here");
+  cmd->add_option("--tiles", args.tiles, "also write the crafted map as a tiled map here");
+  AddTileOptions(cmd, &args.tile_options, "tile-");
   cmd->callback([] { RunCraft(args); });
 }
 

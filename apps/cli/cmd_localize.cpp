@@ -66,7 +66,10 @@ void AddLocalizeCommand(CLI::App& root) {
   auto args = std::make_shared<LocalizeArgs>();
   CLI::App* cmd = root.add_subcommand("localize", "Localization in a prior map (+ hybrid mode)");
   cmd->add_option("--log", args->log, "ROS1 bag or scan folder")->required();
-  cmd->add_option("--map", args->map, "prior map (PCD/PLY, world frame)")->required();
+  cmd->add_option("--map", args->map,
+                  "prior map: PCD/PLY (world frame), or a tiled map directory (hylo tile), "
+                  "streamed around the vehicle")
+      ->required();
   cmd->add_option("--config", args->config, "run configuration (YAML)")->required();
   cmd->add_option("--guess", args->guess,
                   "T_world_imu at the start: \"x y z roll pitch yaw\" (m, deg) or 16 numbers; "

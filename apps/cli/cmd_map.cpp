@@ -2,19 +2,23 @@
 // configured back-end. Writes the trajectory of the IMU frame in the map frame (TUM), the
 // odometry stream, the map (PCD; and map_dense.pcd, every registered scan at
 // output.dense_map_voxel_m, the input of offline crafting), per-scan timing (CSV), the
-// effective configuration and a JSON summary (hylo/run/run_log.h).
+// effective configuration and a JSON summary (hylo/run/run_log.h); with --tiles DIR also the
+// map as a tiled map (`hylo tile`).
 
 #include <cstdio>
 
 #include "commands.h"
 #include "hylo/config/run_config.h"
 #include "hylo/run/run_log.h"
+#include "tile_output.h"
 
 namespace hylo::cli {
 namespace {
 
 struct MapArgs {
   std::string log, config, out, json;
+  std::string tiles;  // also write the map as a tiled map here
+  io::TileMapOptions tile_options;
 };
 
 void RunMap(const MapArgs& args) {
@@ -24,7 +28,14 @@ void RunMap(const MapArgs& args) {
   request.out_dir = args.out;
   request.label = "map";
   const run::RunResult result = run::RunLog(request);
-  MaybeWriteJson(args.json, result.summary);
+  io::Json summary = result.summary;
+  if (!args.tiles.empty()) {
+    // The dense map when there is one (what crafting and localization use), else the tree's.
+    const bool dense = request.config.pipeline.output.dense_map_voxel_m > 0.0;
+    summary["tiles"] = WriteTiles(args.out + (dense ? "/map_dense.pcd" : "/map.pcd"), args.tiles,
+                                  args.tile_options);
+  }
+  MaybeWriteJson(args.json, summary);
   std::printf("%zu scans, path %.1f m, map %zu points, %.2f ms/scan median, %.2f p99\n",
               result.trajectory.size(), io::NumberAt(result.summary, "path_length_m"),
               result.summary.at("map_points").get<std::size_t>(),
@@ -41,6 +52,9 @@ void AddMapCommand(CLI::App& root) {
   cmd->add_option("--config", args->config, "run configuration (YAML)")->required();
   cmd->add_option("--out", args->out, "output directory")->required();
   cmd->add_option("--json", args->json, "also write the summary to this JSON file");
+  cmd->add_option("--tiles", args->tiles,
+                  "also write the map (map_dense.pcd, else map.pcd) as a tiled map here");
+  AddTileOptions(cmd, &args->tile_options, "tile-");
   cmd->callback([args]() { RunMap(*args); });
 }
 

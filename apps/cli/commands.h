@@ -15,6 +15,7 @@ void AddCraftCommand(CLI::App& root);
 void AddGroundCommand(CLI::App& root);
 void AddMapCommand(CLI::App& root);
 void AddLocalizeCommand(CLI::App& root);
+void AddTileCommand(CLI::App& root);
 void AddSimulateCommand(CLI::App& root);
 void AddTraversabilityCommand(CLI::App& root);
 void AddEvalCommand(CLI::App& root);

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   hylo::cli::AddGroundCommand(app);
   hylo::cli::AddMapCommand(app);
   hylo::cli::AddLocalizeCommand(app);
+  hylo::cli::AddTileCommand(app);
   hylo::cli::AddSimulateCommand(app);
   hylo::cli::AddTraversabilityCommand(app);
   hylo::cli::AddEvalCommand(app);

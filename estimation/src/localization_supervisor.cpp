@@ -130,9 +130,26 @@ std::string LocalizationSupervisor::StartGlobally(const NavState& start, bool gr
   return os.str();
 }
 
+void LocalizationSupervisor::SetOnMap(bool on_map, int64_t t_ns,
+                                      const Eigen::Isometry3d& T_map_imu) {
+  if (on_map == on_map_ || !started_) return;
+  on_map_ = on_map;
+  if (!on_map) {
+    bad_scans_in_row_ = 0;
+    lost_ = false;
+  }
+  AddEvent(on_map ? LocalizationEvent::Kind::kReenteredMap : LocalizationEvent::Kind::kLeftMap,
+           t_ns,
+           on_map ? "back on the prior map's tiles: localization in the prior again"
+                  : "off the prior map's tiles: odometry only (scans extend the run's map) "
+                    "until the vehicle comes back",
+           T_map_imu);
+}
+
 void LocalizationSupervisor::Supervise(const std::function<PointCloud()>& sweep_imu,
                                        const registration::NeighborSearch& map,
                                        Estimator* estimator, ScanResult* result) {
+  if (!on_map_) return;  // no prior here to judge the scan by, or to relocalize in
   const ScanHealth& health = result->health;
   if (!health.good) ++scans_bad_health_;
   bad_scans_in_row_ = health.good ? 0 : bad_scans_in_row_ + 1;
@@ -200,6 +217,7 @@ bool LocalizationSupervisor::Relocalize(const PointCloud& sweep_imu,
 }
 
 bool LocalizationSupervisor::MapUpdateAllowed(const ScanResult& result) {
+  if (!on_map_) return result.update.applied;  // odometry mode needs a map of its own
   const double after_s = options_.update_after_s;
   if (after_s < 0.0 || NanosToSeconds(result.t_ns - start_t_ns_) < after_s) return false;
   if (!hybrid_started_) {

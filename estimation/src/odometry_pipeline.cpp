@@ -128,9 +128,26 @@ std::vector<NavState> OdometryPipeline::TakeFinalizedStates() {
   return states;
 }
 
+bool OdometryPipeline::FollowTiledPrior() {
+  const NavState& x = estimator_->state();
+  const Eigen::Vector3f position = x.p_map_imu.cast<float>();
+  map_.BeginScan(position);
+  if (!map_.prior_error().empty()) {
+    Fail("prior map: " + map_.prior_error());
+    return false;
+  }
+  if (supervisor_) {
+    supervisor_->SetOnMap(map_.OnPriorMap(position), x.t_ns,
+                          Eigen::Isometry3d(x.T_map_imu().Matrix()));
+    map_.SetOnDemand(supervisor_->lost());  // a lost vehicle may be anywhere in the map
+  }
+  return true;
+}
+
 bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) {
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start_ms = CpuMs();
+  if (map_.tiled() && !FollowTiledPrior()) return false;
   std::vector<int64_t> knots;
   for (const ImuSample& s : group->imu) {
     estimator_->AddImu(s);

@@ -15,6 +15,21 @@ namespace hylo::estimation {
 void OdometryPipeline::SetPriorMap(const PointCloud& points_map) {
   HYLO_CHECK(status_ == Status::kInitializing && counters_.scans_processed == 0);
   map_.SetPrior(points_map);
+  BuildGlobalMap(points_map);
+}
+
+void OdometryPipeline::SetTiledPriorMap(std::shared_ptr<mapping::TileStreamer> streamer,
+                                        const PointCloud& overview_points,
+                                        std::size_t cache_max_points) {
+  HYLO_CHECK(status_ == Status::kInitializing && counters_.scans_processed == 0);
+  map_.SetTiledPrior(std::move(streamer), cache_max_points);
+  BuildGlobalMap(overview_points);
+  if (overview_points.empty() && options_.localization.global_enabled) {
+    global_map_unavailable_ = "the tiled map has no overview to search";
+  }
+}
+
+void OdometryPipeline::BuildGlobalMap(const PointCloud& points_map) {
   global_map_.reset();
   global_map_unavailable_ = "global localization is disabled (localization.global_enabled)";
   if (!options_.localization.global_enabled) return;
@@ -136,7 +151,13 @@ void OdometryPipeline::StartLocalization(const MeasurementGroup& group) {
   }
   x.T_imu_lidar = options_.T_imu_lidar;
   std::string why;
-  if (supervisor_->Start(x, options_.imu.enabled, map_, estimator_.get(), &why)) {
+  // The start may look anywhere in a tiled prior (global hypotheses): tiles on demand.
+  map_.SetOnDemand(true);
+  const bool started = supervisor_->Start(x, options_.imu.enabled, map_, estimator_.get(), &why);
+  map_.SetOnDemand(false);
+  if (!map_.prior_error().empty()) {
+    Fail("prior map: " + map_.prior_error());
+  } else if (started) {
     status_ = Status::kRunning;
   } else {
     Fail(why);

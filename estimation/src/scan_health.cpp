@@ -62,6 +62,10 @@ std::string ToString(LocalizationEvent::Kind kind) {
       return "relocalization_failed";
     case LocalizationEvent::Kind::kHybridStarted:
       return "hybrid_started";
+    case LocalizationEvent::Kind::kLeftMap:
+      return "left_map";
+    case LocalizationEvent::Kind::kReenteredMap:
+      return "reentered_map";
   }
   return "unknown";
 }

@@ -31,8 +31,43 @@ MapManager::MapManager(const MapManagerOptions& options) : options_(options) {
 }
 
 void MapManager::SetPrior(const PointCloud& points_map) {
+  streamer_.reset();
+  tiles_.reset();
+  cache_.reset();
   prior_ = std::make_unique<IkdTree>();
   prior_->Build(points_map);
+}
+
+void MapManager::SetTiledPrior(std::shared_ptr<TileStreamer> streamer,
+                               std::size_t cache_max_points) {
+  HYLO_CHECK(streamer != nullptr);
+  prior_.reset();
+  streamer_ = std::move(streamer);
+  tiles_ = std::make_shared<const TileSet>();
+  cache_ = std::make_unique<TileCache>(streamer_->shared_source(), cache_max_points);
+  streamer_->TakeUpdate(&tiles_);
+}
+
+void MapManager::BeginScan(const Eigen::Vector3f& position_map) {
+  if (streamer_ == nullptr) return;
+  streamer_->SetPosition(position_map);
+  streamer_->TakeUpdate(&tiles_);
+}
+
+void MapManager::SetOnDemand(bool on_demand) {
+  // Tiles read on demand are for the start and a lost vehicle: once tracking again, the
+  // memory goes back to the window.
+  if (on_demand_ && !on_demand && cache_ != nullptr) cache_->Clear();
+  on_demand_ = on_demand;
+  if (streamer_ != nullptr) streamer_->TakeUpdate(&tiles_);
+}
+
+bool MapManager::OnPriorMap(const Eigen::Vector3f& position_map) const {
+  return streamer_ == nullptr || streamer_->OnMap(position_map);
+}
+
+std::string MapManager::prior_error() const {
+  return streamer_ == nullptr ? std::string() : streamer_->error();
 }
 
 void MapManager::UpdateWindow(const Eigen::Vector3f& sensor) {
@@ -57,6 +92,7 @@ void MapManager::UpdateWindow(const Eigen::Vector3f& sensor) {
     } else {
       slab.min[axis] = new_max;
     }
+    if (keep_windowed_out_) run_.BoxSearch(slab, &windowed_out_);
     counters_.points_windowed_out += run_.DeleteBox(slab);
     window_.min[axis] = new_min;
     window_.max[axis] = new_max;
@@ -77,9 +113,17 @@ IkdTree::InsertSummary MapManager::AddScan(const PointCloud& points_map,
 void MapManager::KNearest(const Eigen::Vector3f& query, int k, float max_distance,
                           std::vector<registration::Neighbor>* neighbors) const {
   run_.KNearest(query, k, max_distance, neighbors);
-  if (prior_ == nullptr || prior_->Size() == 0) return;
   thread_local std::vector<registration::Neighbor> from_prior;
-  prior_->KNearest(query, k, max_distance, &from_prior);
+  if (on_demand_ && cache_ != nullptr) {
+    cache_->KNearestPreferring(tiles_.get(), query, k, max_distance, &from_prior);
+  } else if (tiles_ != nullptr) {
+    tiles_->KNearest(query, k, max_distance, &from_prior);
+  } else if (prior_ != nullptr && prior_->Size() > 0) {
+    prior_->KNearest(query, k, max_distance, &from_prior);
+  } else {
+    return;
+  }
+  if (from_prior.empty()) return;
   neighbors->insert(neighbors->end(), from_prior.begin(), from_prior.end());
   std::sort(neighbors->begin(), neighbors->end(),
             [](const registration::Neighbor& a, const registration::Neighbor& b) {
@@ -88,19 +132,27 @@ void MapManager::KNearest(const Eigen::Vector3f& query, int k, float max_distanc
   if (static_cast<int>(neighbors->size()) > k) neighbors->resize(k);
 }
 
-std::size_t MapManager::prior_size() const { return prior_ == nullptr ? 0 : prior_->Size(); }
+std::size_t MapManager::prior_size() const {
+  if (tiles_ != nullptr) return tiles_->Size();
+  return prior_ == nullptr ? 0 : prior_->Size();
+}
 
-std::size_t MapManager::Size() const { return run_.Size() + prior_size(); }
+std::size_t MapManager::Size() const {
+  return run_.Size() + (on_demand_ && cache_ != nullptr ? cache_->Size() : prior_size());
+}
 
 PointCloud MapManager::Flatten() const {
-  PointCloud points = prior_ == nullptr ? PointCloud{} : prior_->Flatten();
+  PointCloud points = tiles_ != nullptr   ? tiles_->Flatten()
+                      : prior_ == nullptr ? PointCloud{}
+                                          : prior_->Flatten();
   const PointCloud run = run_.Flatten();
   points.insert(points.end(), run.begin(), run.end());
   return points;
 }
 
 std::size_t MapManager::MemoryBytes() const {
-  return run_.MemoryBytes() + (prior_ == nullptr ? 0 : prior_->MemoryBytes());
+  return run_.MemoryBytes() + (prior_ == nullptr ? 0 : prior_->MemoryBytes()) +
+         (tiles_ == nullptr ? 0 : tiles_->MemoryBytes());
 }
 
 }  // namespace hylo::mapping

@@ -16,6 +16,12 @@ bool PriorMapOptions::IsValid(std::string* why) const {
     os << "resolution_m = " << resolution_m << ": must be finite and >= 0";
   } else if (!(origin_granularity_m >= 0.0) || !std::isfinite(origin_granularity_m)) {
     os << "origin_granularity_m = " << origin_granularity_m << ": must be finite and >= 0";
+  } else if (!(tile_load_radius_m >= 0.0) || !std::isfinite(tile_load_radius_m)) {
+    os << "tile_load_radius_m = " << tile_load_radius_m << ": must be finite and >= 0 (0: auto)";
+  } else if (!(tile_unload_margin_m >= 0.0) || !std::isfinite(tile_unload_margin_m)) {
+    os << "tile_unload_margin_m = " << tile_unload_margin_m << ": must be finite and >= 0";
+  } else if (!(tile_cache_million_points > 0.0) || !std::isfinite(tile_cache_million_points)) {
+    os << "tile_cache_million_points = " << tile_cache_million_points << ": must be finite and > 0";
   }
   if (why != nullptr) *why = os.str();
   return os.str().empty();

@@ -105,6 +105,10 @@ TEST(RunConfig, InvalidValueNamesFieldValueAndConstraint) {
                     {"initial_uncertainty.rotation_sigma_rad", "> 0"});
   ExpectConfigError("localization:\n  update_after_s: -3\n", {"localization.update_after_s"});
   ExpectConfigError("output:\n  dense_map_voxel_m: 0.001\n", {"output.dense_map_voxel_m"});
+  ExpectConfigError("prior_map:\n  tile_load_radius_m: -5\n",
+                    {"prior_map", "tile_load_radius_m = -5", ">= 0"});
+  ExpectConfigError("prior_map:\n  tile_cache_million_points: 0\n",
+                    {"prior_map", "tile_cache_million_points", "> 0"});
 }
 
 TEST(RunConfig, MalformedYamlIsAnError) {

@@ -165,6 +165,9 @@ template <class V>
 void VisitFields(V& v, mapping::PriorMapOptions& o) {
   v("resolution_m", o.resolution_m);
   v("origin_granularity_m", o.origin_granularity_m);
+  v("tile_load_radius_m", o.tile_load_radius_m);
+  v("tile_unload_margin_m", o.tile_unload_margin_m);
+  v("tile_cache_million_points", o.tile_cache_million_points);
 }
 
 template <class V>

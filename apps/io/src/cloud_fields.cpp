@@ -26,13 +26,71 @@ std::ifstream OpenForReading(const std::string& path) {
 }
 
 std::vector<uint8_t> ReadRest(std::ifstream* in) {
+  std::vector<uint8_t> bytes(BytesLeft(in));
+  in->read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  return bytes;
+}
+
+std::size_t BytesLeft(std::ifstream* in) {
   const std::streampos start = in->tellg();
   in->seekg(0, std::ios::end);
   const std::streampos end = in->tellg();
   in->seekg(start);
-  std::vector<uint8_t> bytes(static_cast<std::size_t>(end - start));
-  in->read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  return bytes;
+  return static_cast<std::size_t>(end - start);
+}
+
+BufferedReader::BufferedReader(std::ifstream* in, std::size_t buffer_bytes)
+    : in_(in), buffer_(buffer_bytes) {}
+
+bool BufferedReader::Fill() {
+  if (begin_ < end_) return true;
+  in_->read(reinterpret_cast<char*>(buffer_.data()), static_cast<std::streamsize>(buffer_.size()));
+  begin_ = 0;
+  end_ = static_cast<std::size_t>(in_->gcount());
+  return end_ > 0;
+}
+
+bool BufferedReader::Read(uint8_t* out, std::size_t n) {
+  while (n > 0) {
+    if (!Fill()) return false;
+    const std::size_t take = std::min(n, end_ - begin_);
+    std::memcpy(out, buffer_.data() + begin_, take);
+    begin_ += take;
+    out += take;
+    n -= take;
+  }
+  return true;
+}
+
+bool BufferedReader::NextWord(std::string* word) {
+  word->clear();
+  while (Fill()) {
+    const char c = static_cast<char>(buffer_[begin_]);
+    const bool blank = c == ' ' || c == '\t' || c == '\n' || c == '\r';
+    if (blank && !word->empty()) return true;
+    if (!blank) word->push_back(c);
+    ++begin_;
+  }
+  return !word->empty();
+}
+
+bool BufferedReader::NextLine(std::string* line) {
+  line->clear();
+  bool any = false;
+  while (Fill()) {
+    any = true;
+    const uint8_t* start = buffer_.data() + begin_;
+    const auto* stop = static_cast<const uint8_t*>(std::memchr(start, '\n', end_ - begin_));
+    const std::size_t take =
+        stop == nullptr ? end_ - begin_ : static_cast<std::size_t>(stop - start);
+    line->append(reinterpret_cast<const char*>(start), take);
+    begin_ += take;
+    if (stop != nullptr) {
+      ++begin_;  // the line end
+      return true;
+    }
+  }
+  return any;
 }
 
 namespace {
@@ -62,17 +120,25 @@ double DecodeScalar(const uint8_t* bytes, ScalarType type, bool swap) {
       return type.size == 4 ? Load<float>(bytes, swap) : Load<double>(bytes, swap);
     case ScalarKind::kSigned:
       switch (type.size) {
-        case 1: return Load<int8_t>(bytes, swap);
-        case 2: return Load<int16_t>(bytes, swap);
-        case 4: return Load<int32_t>(bytes, swap);
-        default: return Load<int64_t>(bytes, swap);
+        case 1:
+          return Load<int8_t>(bytes, swap);
+        case 2:
+          return Load<int16_t>(bytes, swap);
+        case 4:
+          return Load<int32_t>(bytes, swap);
+        default:
+          return Load<int64_t>(bytes, swap);
       }
     case ScalarKind::kUnsigned:
       switch (type.size) {
-        case 1: return Load<uint8_t>(bytes, swap);
-        case 2: return Load<uint16_t>(bytes, swap);
-        case 4: return Load<uint32_t>(bytes, swap);
-        default: return Load<uint64_t>(bytes, swap);
+        case 1:
+          return Load<uint8_t>(bytes, swap);
+        case 2:
+          return Load<uint16_t>(bytes, swap);
+        case 4:
+          return Load<uint32_t>(bytes, swap);
+        default:
+          return Load<uint64_t>(bytes, swap);
       }
   }
   return 0.0;

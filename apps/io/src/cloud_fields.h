@@ -19,6 +19,27 @@ namespace hylo::io::internal {
 std::ifstream OpenForReading(const std::string& path);
 /// Everything from the current position to the end of the stream.
 std::vector<uint8_t> ReadRest(std::ifstream* in);
+/// Bytes from the current position to the end of the stream (nothing is read).
+std::size_t BytesLeft(std::ifstream* in);
+
+/// Sequential reads of a file body through a fixed buffer, so a body of any size is read in
+/// O(buffer) memory.
+class BufferedReader {
+ public:
+  explicit BufferedReader(std::ifstream* in, std::size_t buffer_bytes = std::size_t{1} << 16);
+  /// The next `n` bytes into `out`; false when the file ends first (what there was is consumed).
+  bool Read(uint8_t* out, std::size_t n);
+  /// The next blank-separated word (spaces, tabs, line ends); false at the end of the file.
+  bool NextWord(std::string* word);
+  /// The next line without its line end; false at the end of the file.
+  bool NextLine(std::string* line);
+
+ private:
+  bool Fill();  // false when nothing is left
+  std::ifstream* in_;
+  std::vector<uint8_t> buffer_;
+  std::size_t begin_ = 0, end_ = 0;
+};
 
 enum class ScalarKind { kFloat, kSigned, kUnsigned };
 struct ScalarType {

@@ -53,4 +53,71 @@ std::vector<uint8_t> LzfDecompress(const std::string& path, const uint8_t* input
                            " of the " + announced);
 }
 
+// The LZF format (liblzf's lzf_d.c documents it): a control byte c < 32 starts a literal run
+// of c + 1 bytes; otherwise the top 3 bits are a length (7: plus the next byte) and a back
+// reference copies length + 2 bytes from ((c & 31) << 8) + next byte + 1 bytes back, byte by
+// byte (a reference may overlap what it produces).
+LzfCursor::LzfCursor(const std::string& path, std::streamoff offset, std::size_t size,
+                     std::size_t expected)
+    : path_(path),
+      in_(OpenForReading(path)),
+      input_(std::size_t{1} << 16),
+      input_left_(size),
+      expected_(expected),
+      history_(kHistory) {
+  in_.seekg(offset);
+}
+
+void LzfCursor::Corrupt(const std::string& why) const {
+  ThrowFileError(path_, "corrupt compressed data: " + why);
+}
+
+uint8_t LzfCursor::NextInput() {
+  if (input_begin_ == input_end_) {
+    const std::size_t want = std::min(input_.size(), input_left_);
+    if (want == 0) Corrupt("LZF stream cut short or referring before its start");
+    in_.read(reinterpret_cast<char*>(input_.data()), static_cast<std::streamsize>(want));
+    const auto got = static_cast<std::size_t>(in_.gcount());
+    if (got == 0) ThrowFileError(path_, "truncated: the LZF block ends before its announced size");
+    input_begin_ = 0;
+    input_end_ = got;
+    input_left_ -= got;
+  }
+  return input_[input_begin_++];
+}
+
+void LzfCursor::Read(uint8_t* out, std::size_t n) {
+  constexpr std::size_t kMask = kHistory - 1;
+  static_assert((kHistory & kMask) == 0, "the history is a power-of-two ring");
+  for (std::size_t k = 0; k < n; ++k) {
+    while (literal_left_ == 0 && copy_left_ == 0) {
+      const unsigned control = NextInput();
+      if (control < 32) {
+        literal_left_ = control + 1;
+        continue;
+      }
+      std::size_t length = control >> 5;
+      if (length == 7) length += NextInput();
+      copy_distance_ = ((control & 31u) << 8) + NextInput() + 1;
+      if (copy_distance_ > produced_) Corrupt("LZF stream cut short or referring before its start");
+      copy_left_ = length + 2;
+    }
+    uint8_t byte;
+    if (literal_left_ > 0) {
+      byte = NextInput();
+      --literal_left_;
+    } else {
+      byte = history_[(produced_ - copy_distance_) & kMask];
+      --copy_left_;
+    }
+    if (produced_ == expected_) {
+      Corrupt("LZF data expands past the " + std::to_string(expected_) +
+              " bytes the header announces");
+    }
+    history_[produced_ & kMask] = byte;
+    ++produced_;
+    if (out != nullptr) out[k] = byte;
+  }
+}
+
 }  // namespace hylo::io::internal

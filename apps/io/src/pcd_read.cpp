@@ -1,158 +1,27 @@
-// PCD v0.7 reader: ascii, binary (point-major) and binary_compressed (LZF, field-major).
-// The header grammar follows the PCL file format description (pointclouds.org,
-// "The PCD (Point Cloud Data) file format").
+// PCD v0.7 reader: ascii, binary (point-major) and binary_compressed (LZF, field-major), read
+// in chunks (cloud_stream.h); ReadPcd drains one stream.
 
 #include <algorithm>
-#include <charconv>
-#include <cstdint>
 #include <cstdlib>
 
 #include "cloud_fields.h"
+#include "cloud_streams.h"
 #include "hylo/io/cloud_io.h"
+#include "hylo/io/cloud_stream.h"
+#include "pcd_format.h"
 #include "pcd_lzf.h"
 
 namespace hylo::io {
 namespace {
 
+using internal::PcdField;
+using internal::PcdHeader;
 using internal::ScalarKind;
-using internal::ScalarType;
 using internal::ThrowFileError;
 
-struct PcdField {
-  std::string name;
-  ScalarType type;
-  std::size_t count = 1;
-  std::size_t offset = 0;  ///< bytes from the start of a point record (binary layout)
-  int slot = internal::kNone;
-};
-
-struct PcdHeader {
-  std::vector<PcdField> fields;
-  std::size_t width = 0;
-  std::size_t height = 1;
-  std::size_t points = 0;
-  std::string data;            ///< ascii, binary or binary_compressed
-  std::size_t point_step = 0;  ///< bytes per point record
-  std::size_t FieldBytes(const PcdField& f) const { return f.type.size * f.count; }
-};
-
-std::size_t ParseCount(const std::string& path, const std::string& key, const std::string& word) {
-  std::size_t value = 0;
-  const auto result = std::from_chars(word.data(), word.data() + word.size(), value);
-  if (result.ec != std::errc() || result.ptr != word.data() + word.size()) {
-    ThrowFileError(path, "malformed header: " + key + " value '" + word + "' is not a count");
-  }
-  return value;
-}
-
-ScalarType ParseType(const std::string& path, const std::string& type, std::size_t size) {
-  ScalarType t;
-  t.size = static_cast<int>(size);
-  const bool int_size = size == 1 || size == 2 || size == 4 || size == 8;
-  if (type == "F" && (size == 4 || size == 8)) {
-    t.kind = ScalarKind::kFloat;
-  } else if (type == "I" && int_size) {
-    t.kind = ScalarKind::kSigned;
-  } else if (type == "U" && int_size) {
-    t.kind = ScalarKind::kUnsigned;
-  } else {
-    ThrowFileError(path, "malformed header: unsupported TYPE " + type + " with SIZE " +
-                             std::to_string(size));
-  }
-  return t;
-}
-
-struct RawHeader {
-  std::vector<std::string> names, sizes, types, counts;
-  bool has_width = false, has_points = false;
-};
-
-void ApplyHeaderLine(const std::string& path, const std::vector<std::string>& words,
-                     RawHeader* raw, PcdHeader* header) {
-  const std::string key = words[0];
-  const std::vector<std::string> values(words.begin() + 1, words.end());
-  auto single = [&]() {
-    if (values.size() != 1) ThrowFileError(path, "malformed header: " + key + " needs 1 value");
-    return ParseCount(path, key, values[0]);
-  };
-  if (key == "VERSION" || key == "VIEWPOINT") return;  // the viewpoint is not applied
-  if (key == "FIELDS" || key == "COLUMNS") {
-    raw->names = values;
-  } else if (key == "SIZE") {
-    raw->sizes = values;
-  } else if (key == "TYPE") {
-    raw->types = values;
-  } else if (key == "COUNT") {
-    raw->counts = values;
-  } else if (key == "WIDTH") {
-    header->width = single();
-    raw->has_width = true;
-  } else if (key == "HEIGHT") {
-    header->height = single();
-  } else if (key == "POINTS") {
-    header->points = single();
-    raw->has_points = true;
-  } else {
-    ThrowFileError(path, "malformed header: unknown line '" + key + "'");
-  }
-}
-
-void BuildFields(const std::string& path, const RawHeader& raw, PcdHeader* header) {
-  const std::size_t n = raw.names.size();
-  if (n == 0) ThrowFileError(path, "malformed header: no FIELDS line");
-  if (raw.sizes.size() != n || raw.types.size() != n || (!raw.counts.empty() && raw.counts.size() != n)) {
-    ThrowFileError(path, "malformed header: FIELDS, SIZE, TYPE and COUNT disagree in length");
-  }
-  bool seen[internal::kNumSlots] = {};
-  for (std::size_t i = 0; i < n; ++i) {
-    PcdField f;
-    f.name = raw.names[i];
-    f.type = ParseType(path, raw.types[i], ParseCount(path, "SIZE", raw.sizes[i]));
-    f.count = raw.counts.empty() ? 1 : ParseCount(path, "COUNT", raw.counts[i]);
-    if (f.count == 0) ThrowFileError(path, "malformed header: field " + f.name + " has COUNT 0");
-    f.offset = header->point_step;
-    header->point_step += header->FieldBytes(f);
-    const int slot = internal::SlotForName(f.name);
-    // A multi-valued field (a histogram, say) is not a scalar attribute: read past it.
-    if (slot != internal::kNone && f.count == 1 && !seen[slot]) {
-      f.slot = slot;
-      seen[slot] = true;
-    }
-    header->fields.push_back(f);
-  }
-}
-
-PcdHeader ReadHeader(const std::string& path, std::ifstream* in) {
-  constexpr int kMaxHeaderLines = 1000;
-  PcdHeader header;
-  RawHeader raw;
-  std::string line;
-  for (int line_no = 0; line_no < kMaxHeaderLines && std::getline(*in, line); ++line_no) {
-    const std::vector<std::string> words = internal::SplitWords(line);
-    if (words.empty() || words[0][0] == '#') continue;
-    if (words[0] != "DATA") {
-      ApplyHeaderLine(path, words, &raw, &header);
-      continue;
-    }
-    header.data = words.size() == 2 ? words[1] : "";
-    if (header.data != "ascii" && header.data != "binary" && header.data != "binary_compressed") {
-      ThrowFileError(path, "malformed header: unknown DATA '" + line + "'");
-    }
-    if (!raw.has_width) ThrowFileError(path, "malformed header: no WIDTH line");
-    if (!raw.has_points) header.points = header.width * header.height;
-    if (header.points != header.width * header.height) {
-      ThrowFileError(path, "malformed header: POINTS " + std::to_string(header.points) +
-                               " != WIDTH * HEIGHT");
-    }
-    BuildFields(path, raw, &header);
-    return header;
-  }
-  ThrowFileError(path, "malformed header: no DATA line (not a PCD file?)");
-}
-
-void Truncated(const std::string& path, std::size_t have, const std::string& promise) {
-  ThrowFileError(path, "truncated: " + std::to_string(have) + " data bytes, header promises " +
-                           promise);
+[[noreturn]] void Truncated(const std::string& path, std::size_t have, const std::string& promise) {
+  ThrowFileError(path,
+                 "truncated: " + std::to_string(have) + " data bytes, header promises " + promise);
 }
 
 std::string PointsOf(const PcdHeader& header) {
@@ -160,137 +29,214 @@ std::string PointsOf(const PcdHeader& header) {
          " bytes";
 }
 
-// Decodes records where field f of point i starts at base + i * stride[f] + start[f].
-CloudFile DecodeBinary(const std::string& path, const PcdHeader& header, const uint8_t* base,
-                       const std::vector<std::size_t>& start,
-                       const std::vector<std::size_t>& stride) {
-  bool present[internal::kNumSlots] = {};
-  for (const PcdField& f : header.fields) {
-    if (f.slot != internal::kNone) present[f.slot] = true;
-  }
-  internal::CloudBuilder builder(path, present, header.points);
-  double record[internal::kNumSlots] = {};
-  for (std::size_t i = 0; i < header.points; ++i) {
-    for (std::size_t k = 0; k < header.fields.size(); ++k) {
-      const PcdField& f = header.fields[k];
-      if (f.slot == internal::kNone) continue;
-      record[f.slot] = internal::DecodeScalar(base + start[k] + i * stride[k], f.type, false);
-    }
-    builder.Add(record);
-  }
-  return builder.Finish();
-}
-
-CloudFile ReadBinaryBody(const std::string& path, const PcdHeader& header,
-                         const std::vector<uint8_t>& body) {
-  if (body.size() / header.point_step < header.points) {
-    Truncated(path, body.size(), PointsOf(header));
-  }
-  std::vector<std::size_t> start, stride;
-  for (const PcdField& f : header.fields) {
-    start.push_back(f.offset);
-    stride.push_back(header.point_step);
-  }
-  return DecodeBinary(path, header, body.data(), start, stride);
-}
-
 uint32_t ReadU32(const uint8_t* p) {
   return static_cast<uint32_t>(internal::DecodeScalar(p, {ScalarKind::kUnsigned, 4}, false));
 }
 
-CloudFile ReadCompressedBody(const std::string& path, const PcdHeader& header,
-                             const std::vector<uint8_t>& body) {
-  if (body.size() < 8) Truncated(path, body.size(), "an 8-byte size block");
-  const uint32_t compressed_size = ReadU32(body.data());
-  const uint32_t uncompressed_size = ReadU32(body.data() + 4);
-  if (body.size() - 8 < compressed_size) {
-    Truncated(path, body.size() - 8, std::to_string(compressed_size) + " compressed bytes");
+class PcdStream final : public CloudStream {
+ public:
+  // `whole_block`: a binary_compressed block is decompressed at once (one pass, the whole
+  // block in memory: what a whole-file read needs anyway) instead of by field cursors.
+  PcdStream(const std::string& path, bool whole_block)
+      : CloudStream(path), in_(internal::OpenForReading(path)) {
+    header_ = internal::ReadPcdHeader(path, &in_);
+    info_.format = "pcd";
+    info_.encoding = header_.data;
+    info_.points = header_.points;
+    for (const PcdField& f : header_.fields) {
+      info_.fields.push_back(f.name);
+      if (f.slot != internal::kNone) present_[f.slot] = true;
+    }
+    internal::CloudBuilder check(path, present_, 0);  // x, y and z must be there
+    if (header_.data == "binary") OpenBinary();
+    if (header_.data == "binary_compressed") OpenCompressed(whole_block);
   }
-  const std::size_t expected = header.points * header.point_step;
-  if (header.points > UINT32_MAX / header.point_step || uncompressed_size != expected) {
-    ThrowFileError(path, "corrupt: compressed block expands to " +
-                             std::to_string(uncompressed_size) + " bytes, header implies " +
-                             std::to_string(expected));
-  }
-  const std::vector<uint8_t> raw =
-      internal::LzfDecompress(path, body.data() + 8, compressed_size, expected);
-  // Field-major: all values of field 0, then all of field 1, ...
-  std::vector<std::size_t> start, stride;
-  std::size_t offset = 0;
-  for (const PcdField& f : header.fields) {
-    start.push_back(offset);
-    stride.push_back(header.FieldBytes(f));
-    offset += header.points * header.FieldBytes(f);
-  }
-  return DecodeBinary(path, header, raw.data(), start, stride);
-}
 
-// One point per line; blank lines are skipped. A line with the wrong number of values is an
-// error naming the line (counted from the first data line).
-CloudFile ReadAsciiBody(const std::string& path, const PcdHeader& header,
-                        const std::vector<uint8_t>& body) {
-  bool present[internal::kNumSlots] = {};
-  std::size_t values_per_point = 0;
-  for (const PcdField& f : header.fields) {
-    if (f.slot != internal::kNone) present[f.slot] = true;
-    values_per_point += f.count;
+  bool Next(std::size_t max_points, CloudFile* chunk) override {
+    *chunk = CloudFile();
+    const std::size_t n = std::min(max_points, header_.points - records_read_);
+    if (n == 0) return false;
+    if (header_.data == "ascii") {
+      ReadAscii(n, chunk);
+    } else if (header_.data == "binary") {
+      ReadBinary(n, chunk);
+    } else {
+      ReadCompressed(n, chunk);
+    }
+    records_read_ += n;
+    return true;
   }
-  internal::CloudBuilder builder(path, present, std::min(header.points, body.size()));
-  const std::string text(body.begin(), body.end());
-  std::vector<double> values(values_per_point);
-  double record[internal::kNumSlots] = {};
-  std::size_t line_start = 0, line_no = 0, points_read = 0;
-  while (points_read < header.points && line_start < text.size()) {
-    std::size_t line_end = text.find('\n', line_start);
-    if (line_end == std::string::npos) line_end = text.size();
-    const std::string line = text.substr(line_start, line_end - line_start);
-    line_start = line_end + 1;
-    ++line_no;
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+
+ private:
+  void OpenBinary() {
+    const std::size_t body = internal::BytesLeft(&in_);
+    if (body / header_.point_step < header_.points) Truncated(path_, body, PointsOf(header_));
+  }
+
+  void OpenCompressed(bool whole_block) {
+    std::size_t body = internal::BytesLeft(&in_);
+    uint8_t sizes[8];
+    if (body < 8 || !in_.read(reinterpret_cast<char*>(sizes), 8)) {
+      Truncated(path_, body, "an 8-byte size block");
+    }
+    body -= 8;
+    const uint32_t compressed_size = ReadU32(sizes);
+    const uint32_t uncompressed_size = ReadU32(sizes + 4);
+    if (body < compressed_size) {
+      Truncated(path_, body, std::to_string(compressed_size) + " compressed bytes");
+    }
+    const std::size_t expected = header_.points * header_.point_step;
+    if (header_.points > UINT32_MAX / header_.point_step || uncompressed_size != expected) {
+      ThrowFileError(path_, "corrupt: compressed block expands to " +
+                                std::to_string(uncompressed_size) + " bytes, header implies " +
+                                std::to_string(expected));
+    }
+    // Field-major: all values of field 0, then all of field 1, ...
+    std::size_t offset = 0;
+    for (const PcdField& f : header_.fields) {
+      field_start_.push_back(offset);
+      offset += header_.points * header_.FieldBytes(f);
+    }
+    if (whole_block) {
+      std::vector<uint8_t> packed(compressed_size);
+      in_.read(reinterpret_cast<char*>(packed.data()), compressed_size);
+      block_ = internal::LzfDecompress(path_, packed.data(), compressed_size, expected);
+      return;
+    }
+    const std::streamoff data = in_.tellg();
+    cursors_.resize(header_.fields.size());
+    for (std::size_t k = 0; k < header_.fields.size(); ++k) {
+      if (header_.fields[k].slot == internal::kNone) continue;
+      cursors_[k] = std::make_unique<internal::LzfCursor>(path_, data, compressed_size, expected);
+      cursors_[k]->Read(nullptr, field_start_[k]);
+    }
+  }
+
+  // Decodes n records where field k of record i starts at base[k] + i * stride[k].
+  void Decode(std::size_t n, const std::vector<const uint8_t*>& base,
+              const std::vector<std::size_t>& stride, CloudFile* chunk) const {
+    internal::CloudBuilder builder(path_, present_, n);
+    double record[internal::kNumSlots] = {};
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t k = 0; k < header_.fields.size(); ++k) {
+        const PcdField& f = header_.fields[k];
+        if (f.slot == internal::kNone) continue;
+        record[f.slot] = internal::DecodeScalar(base[k] + i * stride[k], f.type, false);
+      }
+      builder.Add(record);
+    }
+    *chunk = builder.Finish();
+  }
+
+  void ReadBinary(std::size_t n, CloudFile* chunk) {
+    buffer_.resize(n * header_.point_step);
+    in_.read(reinterpret_cast<char*>(buffer_.data()), static_cast<std::streamsize>(buffer_.size()));
+    if (static_cast<std::size_t>(in_.gcount()) != buffer_.size()) {
+      Truncated(path_, records_read_ * header_.point_step + in_.gcount(), PointsOf(header_));
+    }
+    std::vector<const uint8_t*> base;
+    std::vector<std::size_t> stride;
+    for (const PcdField& f : header_.fields) {
+      base.push_back(buffer_.data() + f.offset);
+      stride.push_back(header_.point_step);
+    }
+    Decode(n, base, stride, chunk);
+  }
+
+  void ReadCompressed(std::size_t n, CloudFile* chunk) {
+    std::vector<const uint8_t*> base;
+    std::vector<std::size_t> stride;
+    field_chunks_.resize(header_.fields.size());
+    for (std::size_t k = 0; k < header_.fields.size(); ++k) {
+      const std::size_t size = header_.FieldBytes(header_.fields[k]);
+      stride.push_back(size);
+      if (header_.fields[k].slot == internal::kNone) {
+        base.push_back(nullptr);  // never read
+        continue;
+      }
+      if (!block_.empty()) {
+        base.push_back(block_.data() + field_start_[k] + records_read_ * size);
+        continue;
+      }
+      field_chunks_[k].resize(n * size);
+      cursors_[k]->Read(field_chunks_[k].data(), n * size);
+      base.push_back(field_chunks_[k].data());
+    }
+    Decode(n, base, stride, chunk);
+  }
+
+  // One point per line; blank lines are skipped. A line with the wrong number of values is an
+  // error naming the line (counted from the first data line).
+  void ReadAscii(std::size_t n, CloudFile* chunk) {
+    std::size_t values_per_point = 0;
+    for (const PcdField& f : header_.fields) values_per_point += f.count;
+    // The header's count is not checked against the file's size here: reserve modestly.
+    internal::CloudBuilder builder(path_, present_, std::min<std::size_t>(n, 1 << 20));
+    std::vector<double> values(values_per_point);
+    double record[internal::kNumSlots] = {};
+    std::string line;
+    for (std::size_t done = 0; done < n;) {
+      if (!std::getline(in_, line)) {
+        ThrowFileError(path_, "truncated: " + std::to_string(records_read_ + done) +
+                                  " ascii points, header promises " +
+                                  std::to_string(header_.points));
+      }
+      ++ascii_line_;
+      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+      ParseLine(line, &values);
+      std::size_t v = 0;
+      for (const PcdField& f : header_.fields) {
+        if (f.slot != internal::kNone) record[f.slot] = internal::AsDeclared(values[v], f.type);
+        v += f.count;
+      }
+      builder.Add(record);
+      ++done;
+    }
+    *chunk = builder.Finish();
+  }
+
+  void ParseLine(const std::string& line, std::vector<double>* values) const {
     const char* cursor = line.c_str();
     std::size_t count = 0;
     for (char* end = nullptr;; cursor = end) {
       const double value = std::strtod(cursor, &end);
       if (end == cursor) break;
-      if (count < values_per_point) values[count] = value;
+      if (count < values->size()) (*values)[count] = value;
       ++count;
     }
     const bool junk = line.find_first_not_of(" \t\r", cursor - line.c_str()) != std::string::npos;
-    if (count != values_per_point || junk) {
-      ThrowFileError(path, "malformed or truncated ascii data line " + std::to_string(line_no) +
-                               ": expected " + std::to_string(values_per_point) +
-                               " numbers, found " + std::to_string(count) +
-                               (junk ? " and text" : ""));
+    if (count != values->size() || junk) {
+      ThrowFileError(path_, "malformed or truncated ascii data line " +
+                                std::to_string(ascii_line_) + ": expected " +
+                                std::to_string(values->size()) + " numbers, found " +
+                                std::to_string(count) + (junk ? " and text" : ""));
     }
-    std::size_t v = 0;
-    for (const PcdField& f : header.fields) {
-      if (f.slot != internal::kNone) record[f.slot] = internal::AsDeclared(values[v], f.type);
-      v += f.count;
-    }
-    builder.Add(record);
-    ++points_read;
   }
-  if (points_read < header.points) {
-    ThrowFileError(path, "truncated: " + std::to_string(points_read) + " ascii points, header " +
-                             "promises " + std::to_string(header.points));
-  }
-  return builder.Finish();
-}
+
+  std::ifstream in_;
+  PcdHeader header_;
+  bool present_[internal::kNumSlots] = {};
+  std::vector<uint8_t> buffer_;                                // binary: one chunk of records
+  std::vector<std::size_t> field_start_;                       // compressed: byte of each field
+  std::vector<uint8_t> block_;                                 // compressed, whole: the block
+  std::vector<std::unique_ptr<internal::LzfCursor>> cursors_;  // compressed, streamed
+  std::vector<std::vector<uint8_t>> field_chunks_;             // ... one chunk of each field
+  std::size_t ascii_line_ = 0;
+};
 
 }  // namespace
 
+std::unique_ptr<CloudStream> internal::OpenPcdStream(const std::string& path, bool whole) {
+  return std::make_unique<PcdStream>(path, whole);
+}
+
 CloudFile ReadPcd(const std::string& path) {
-  std::ifstream in = internal::OpenForReading(path);
-  const PcdHeader header = ReadHeader(path, &in);
-  const std::vector<uint8_t> body = internal::ReadRest(&in);
-  if (header.data == "ascii") return ReadAsciiBody(path, header, body);
-  if (header.data == "binary") return ReadBinaryBody(path, header, body);
-  return ReadCompressedBody(path, header, body);
+  return ReadAll(internal::OpenPcdStream(path, /*whole=*/true).get());
 }
 
 CloudFileInfo ReadPcdInfo(const std::string& path) {
   std::ifstream in = internal::OpenForReading(path);
-  const PcdHeader header = ReadHeader(path, &in);
+  const PcdHeader header = internal::ReadPcdHeader(path, &in);
   CloudFileInfo info;
   info.format = "pcd";
   info.encoding = header.data;

@@ -1,10 +1,15 @@
 // PCD v0.7 writer: x y z (float32, or float64 for large coordinates, see WriteCloud), then
 // the attributes the cloud has: intensity F4, normal_x/y/z F4, label I4.
 
+#include <cstdio>
 #include <sstream>
+#include <utility>
 
 #include "cloud_fields.h"
+#include "hylo/io/atomic_file.h"
 #include "hylo/io/cloud_io.h"
+#include "hylo/io/cloud_stream.h"
+#include "pcd_format.h"
 #include "pcd_lzf.h"
 
 namespace hylo::io {
@@ -39,8 +44,8 @@ std::string Header(const std::vector<OutField>& fields, std::size_t points,
   }
   std::ostringstream out;
   out << "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\n"
-      << "FIELDS" << names.str() << "\nSIZE" << sizes.str() << "\nTYPE" << types.str()
-      << "\nCOUNT" << counts.str() << "\nWIDTH " << points << "\nHEIGHT 1\n"
+      << "FIELDS" << names.str() << "\nSIZE" << sizes.str() << "\nTYPE" << types.str() << "\nCOUNT"
+      << counts.str() << "\nWIDTH " << points << "\nHEIGHT 1\n"
       << "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << points << "\nDATA " << data << "\n";
   return out.str();
 }
@@ -117,6 +122,43 @@ std::vector<uint8_t> CompressedBody(const std::string& path, const CloudFile& cl
 }
 
 }  // namespace
+
+std::string internal::PcdXyzFloatHeader(std::size_t points) {
+  return Header({{"x", 'F', 4}, {"y", 'F', 4}, {"z", 'F', 4}}, points, "binary");
+}
+
+PcdXyzWriter::PcdXyzWriter(std::string path)
+    : path_(std::move(path)),
+      body_path_(path_ + ".body.tmp"),
+      body_(body_path_, std::ios::binary | std::ios::trunc) {
+  if (!body_) internal::ThrowFileError(body_path_, "cannot create (the body of " + path_ + ")");
+}
+
+PcdXyzWriter::~PcdXyzWriter() {
+  body_.close();
+  std::remove(body_path_.c_str());
+}
+
+void PcdXyzWriter::Add(const PointCloud& points) {
+  static_assert(sizeof(Eigen::Vector3f) == 12, "x y z float32 records");
+  body_.write(reinterpret_cast<const char*>(points.data()),
+              static_cast<std::streamsize>(points.size() * sizeof(Eigen::Vector3f)));
+  points_ += points.size();
+}
+
+void PcdXyzWriter::Commit() {
+  body_.close();
+  if (!body_) internal::ThrowFileError(body_path_, "cannot write (disk full?)");
+  AtomicFile file(path_, std::ios::out | std::ios::binary);
+  file.stream() << internal::PcdXyzFloatHeader(points_);
+  std::ifstream body(body_path_, std::ios::binary);
+  std::vector<char> block(std::size_t{1} << 20);
+  while (body.read(block.data(), static_cast<std::streamsize>(block.size())) || body.gcount() > 0) {
+    file.stream().write(block.data(), body.gcount());
+  }
+  file.Commit();
+  std::remove(body_path_.c_str());
+}
 
 void WritePcd(const std::string& path, const CloudFile& cloud, CloudEncoding encoding) {
   internal::CheckAttributeSizes(path, cloud);

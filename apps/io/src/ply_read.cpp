@@ -1,11 +1,15 @@
 // PLY reader (Greg Turk's polygon file format): ascii, binary_little_endian and
-// binary_big_endian. Only the `vertex` element is decoded; the elements before it (rare)
-// are read past, the ones after it (faces) are not read at all.
+// binary_big_endian, read in chunks (cloud_stream.h); ReadPly drains one stream. Only the
+// `vertex` element is decoded.
 
+#include <algorithm>
 #include <cstdlib>
+#include <memory>
 
 #include "cloud_fields.h"
+#include "cloud_streams.h"
 #include "hylo/io/cloud_io.h"
+#include "hylo/io/cloud_stream.h"
 
 namespace hylo::io {
 namespace {
@@ -35,14 +39,14 @@ struct PlyHeader {
 
 ScalarType ParsePlyType(const std::string& path, const std::string& name) {
   static const std::pair<const char*, ScalarType> kTypes[] = {
-      {"char", {ScalarKind::kSigned, 1}},    {"int8", {ScalarKind::kSigned, 1}},
-      {"uchar", {ScalarKind::kUnsigned, 1}}, {"uint8", {ScalarKind::kUnsigned, 1}},
-      {"short", {ScalarKind::kSigned, 2}},   {"int16", {ScalarKind::kSigned, 2}},
+      {"char", {ScalarKind::kSigned, 1}},     {"int8", {ScalarKind::kSigned, 1}},
+      {"uchar", {ScalarKind::kUnsigned, 1}},  {"uint8", {ScalarKind::kUnsigned, 1}},
+      {"short", {ScalarKind::kSigned, 2}},    {"int16", {ScalarKind::kSigned, 2}},
       {"ushort", {ScalarKind::kUnsigned, 2}}, {"uint16", {ScalarKind::kUnsigned, 2}},
-      {"int", {ScalarKind::kSigned, 4}},     {"int32", {ScalarKind::kSigned, 4}},
-      {"uint", {ScalarKind::kUnsigned, 4}},  {"uint32", {ScalarKind::kUnsigned, 4}},
-      {"float", {ScalarKind::kFloat, 4}},    {"float32", {ScalarKind::kFloat, 4}},
-      {"double", {ScalarKind::kFloat, 8}},   {"float64", {ScalarKind::kFloat, 8}}};
+      {"int", {ScalarKind::kSigned, 4}},      {"int32", {ScalarKind::kSigned, 4}},
+      {"uint", {ScalarKind::kUnsigned, 4}},   {"uint32", {ScalarKind::kUnsigned, 4}},
+      {"float", {ScalarKind::kFloat, 4}},     {"float32", {ScalarKind::kFloat, 4}},
+      {"double", {ScalarKind::kFloat, 8}},    {"float64", {ScalarKind::kFloat, 8}}};
   for (const auto& [type_name, type] : kTypes) {
     if (name == type_name) return type;
   }
@@ -107,25 +111,20 @@ PlyHeader ReadHeader(const std::string& path, std::ifstream* in) {
 // Walks the body value by value; throws "truncated" when the file ends early.
 class BodyCursor {
  public:
-  BodyCursor(const std::string& path, const std::string& format, std::vector<uint8_t> body)
-      : path_(path), ascii_(format == "ascii"), swap_(format == "binary_big_endian"),
-        body_(std::move(body)) {
-    if (ascii_) body_.push_back('\0');  // strtod stops at the terminator
-  }
+  BodyCursor(const std::string& path, const std::string& format, std::ifstream* in)
+      : path_(path), ascii_(format == "ascii"), swap_(format == "binary_big_endian"), reader_(in) {}
 
   double Next(ScalarType type) {
     if (ascii_) {
-      const char* begin = reinterpret_cast<const char*>(body_.data()) + pos_;
+      if (!reader_.NextWord(&word_)) Fail();
       char* end = nullptr;
-      const double value = std::strtod(begin, &end);
-      if (end == begin) Fail();
-      pos_ += static_cast<std::size_t>(end - begin);
+      const double value = std::strtod(word_.c_str(), &end);
+      if (end != word_.c_str() + word_.size()) Fail();
       return internal::AsDeclared(value, type);
     }
-    if (body_.size() - pos_ < static_cast<std::size_t>(type.size)) Fail();
-    const double value = internal::DecodeScalar(body_.data() + pos_, type, swap_);
-    pos_ += type.size;
-    return value;
+    uint8_t bytes[8];
+    if (!reader_.Read(bytes, static_cast<std::size_t>(type.size))) Fail();
+    return internal::DecodeScalar(bytes, type, swap_);
   }
 
   void Skip(const PlyProperty& p) {
@@ -147,44 +146,75 @@ class BodyCursor {
   }
   std::string path_;
   bool ascii_, swap_;
-  std::vector<uint8_t> body_;
-  std::size_t pos_ = 0;
+  internal::BufferedReader reader_;
+  std::string word_;
 };
 
-CloudFile ReadVertices(const std::string& path, const PlyElement& vertex, BodyCursor* cursor) {
-  bool present[internal::kNumSlots] = {};
-  for (const PlyProperty& p : vertex.properties) {
-    if (p.slot != internal::kNone) present[p.slot] = true;
-  }
-  internal::CloudBuilder builder(path, present, std::min<std::size_t>(vertex.count, 1 << 24));
-  double record[internal::kNumSlots] = {};
-  for (std::size_t i = 0; i < vertex.count; ++i, ++cursor->items_done) {
-    for (const PlyProperty& p : vertex.properties) {
-      if (p.slot == internal::kNone) {
-        cursor->Skip(p);
-      } else {
-        record[p.slot] = cursor->Next(p.type);
+// The vertex element, read in chunks; the elements before it (rare) are read past when the
+// stream opens, the ones after it (faces) are not read at all.
+class PlyStream final : public CloudStream {
+ public:
+  explicit PlyStream(const std::string& path)
+      : CloudStream(path), in_(internal::OpenForReading(path)) {
+    header_ = ReadHeader(path, &in_);
+    cursor_ = std::make_unique<BodyCursor>(path, header_.format, &in_);
+    for (const PlyElement& element : header_.elements) {
+      if (element.name == "vertex") {
+        vertex_ = element;
+        break;
+      }
+      for (std::size_t i = 0; i < element.count; ++i, ++cursor_->items_done) {
+        for (const PlyProperty& p : element.properties) cursor_->Skip(p);
       }
     }
-    builder.Add(record);
+    if (vertex_.name.empty()) ThrowFileError(path, "no vertex element");
+    info_.format = "ply";
+    info_.encoding = header_.format;
+    info_.points = vertex_.count;
+    for (const PlyProperty& p : vertex_.properties) {
+      info_.fields.push_back(p.name);
+      if (p.slot != internal::kNone) present_[p.slot] = true;
+    }
+    internal::CloudBuilder check(path, present_, 0);  // x, y and z must be there
   }
-  return builder.Finish();
-}
+
+  bool Next(std::size_t max_points, CloudFile* chunk) override {
+    *chunk = CloudFile();
+    const std::size_t n = std::min(max_points, vertex_.count - records_read_);
+    if (n == 0) return false;
+    // The count is not checked against the file's size: reserve modestly.
+    internal::CloudBuilder builder(path_, present_, std::min<std::size_t>(n, 1 << 24));
+    double record[internal::kNumSlots] = {};
+    for (std::size_t i = 0; i < n; ++i, ++cursor_->items_done) {
+      for (const PlyProperty& p : vertex_.properties) {
+        if (p.slot == internal::kNone) {
+          cursor_->Skip(p);
+        } else {
+          record[p.slot] = cursor_->Next(p.type);
+        }
+      }
+      builder.Add(record);
+    }
+    *chunk = builder.Finish();
+    records_read_ += n;
+    return true;
+  }
+
+ private:
+  std::ifstream in_;
+  PlyHeader header_;
+  std::unique_ptr<BodyCursor> cursor_;
+  PlyElement vertex_;
+  bool present_[internal::kNumSlots] = {};
+};
 
 }  // namespace
 
-CloudFile ReadPly(const std::string& path) {
-  std::ifstream in = internal::OpenForReading(path);
-  const PlyHeader header = ReadHeader(path, &in);
-  BodyCursor cursor(path, header.format, internal::ReadRest(&in));
-  for (const PlyElement& element : header.elements) {
-    if (element.name == "vertex") return ReadVertices(path, element, &cursor);
-    for (std::size_t i = 0; i < element.count; ++i, ++cursor.items_done) {
-      for (const PlyProperty& p : element.properties) cursor.Skip(p);
-    }
-  }
-  ThrowFileError(path, "no vertex element");
+std::unique_ptr<CloudStream> internal::OpenPlyStream(const std::string& path) {
+  return std::make_unique<PlyStream>(path);
 }
+
+CloudFile ReadPly(const std::string& path) { return ReadAll(internal::OpenPlyStream(path).get()); }
 
 CloudFileInfo ReadPlyInfo(const std::string& path) {
   std::ifstream in = internal::OpenForReading(path);

@@ -1,18 +1,37 @@
 #include "hylo/run/prior_map_io.h"
 
+#include <filesystem>
+
 #include "hylo/io/cloud_io.h"
+#include "hylo/io/tiled_map.h"
+#include "hylo/mapping/ikd_tree.h"
 
 namespace hylo::run {
 
 mapping::PriorMap LoadPriorMap(const std::string& path, const mapping::PriorMapOptions& options,
                                const std::optional<Eigen::Isometry3d>& T_world_imu_guess,
                                estimation::OdometryPipeline* pipeline) {
+  if (std::filesystem::is_directory(path)) {
+    return LoadTiledPriorMap(path, options, T_world_imu_guess, pipeline);
+  }
   mapping::PriorMap prior = mapping::BuildPriorMap(io::ReadCloud(path).positions, options, path);
   pipeline->SetPriorMap(prior.points_local);
   std::optional<Eigen::Isometry3d> guess_local;
   if (T_world_imu_guess) guess_local = mapping::PoseToLocal(*T_world_imu_guess, prior.origin_world);
   pipeline->SetInitialGuess(guess_local);
   return prior;
+}
+
+std::unique_ptr<registration::NeighborSearch> PriorSearch(
+    const mapping::PriorMap& prior, const estimation::OdometryPipeline& pipeline,
+    std::size_t cache_points) {
+  if (!prior.tiled_dir.empty()) {
+    return std::make_unique<mapping::TileCache>(pipeline.map().streamer()->shared_source(),
+                                                cache_points);
+  }
+  auto tree = std::make_unique<mapping::IkdTree>();
+  tree->Build(prior.points_local);
+  return tree;
 }
 
 void WriteWorldCloud(const std::string& path, const PointCloud& points_map,

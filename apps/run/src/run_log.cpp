@@ -2,6 +2,7 @@
 
 #include <sys/resource.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -14,7 +15,6 @@
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/log_reader.h"
 #include "hylo/io/progress.h"
-#include "hylo/mapping/ikd_tree.h"
 #include "hylo/registration/voxel_filter.h"
 #include "hylo/run/prior_map_io.h"
 #include "run_outputs.h"
@@ -46,10 +46,8 @@ io::Json EventsJson(const std::vector<estimation::LocalizationEvent>& events,
 
 
 // The paper's cloud-to-cloud metric: the registered scans against the prior map.
-io::Json CloudToCloudJson(const PointCloud& registered_map, const PointCloud& prior_map,
-                          double max_distance_m) {
-  mapping::IkdTree reference{mapping::IkdTree::Options()};
-  reference.Build(prior_map);
+io::Json CloudToCloudJson(const PointCloud& registered_map,
+                          const registration::NeighborSearch& reference, double max_distance_m) {
   evaluation::CloudDistanceOptions options;
   options.max_distance_m = max_distance_m;
   const evaluation::CloudDistanceSummary s =
@@ -64,6 +62,17 @@ io::Json CloudToCloudJson(const PointCloud& registered_map, const PointCloud& pr
   j["max_distance_m"] = max_distance_m;
   if (!s.ok) j["message"] = s.message;
   return j;
+}
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double ProcessCpuSeconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
 }  // namespace
@@ -88,6 +97,7 @@ io::Json PipelineCountersJson(const estimation::PipelineCounters& c) {
 }
 
 RunResult RunLog(const RunRequest& request) {
+  const auto run_start = std::chrono::steady_clock::now();
   const config::RunConfig& config = request.config;
   std::filesystem::create_directories(request.out_dir);
   config::SaveRunConfig(request.out_dir + "/config.yaml", config);
@@ -100,6 +110,7 @@ RunResult RunLog(const RunRequest& request) {
     prior = LoadPriorMap(request.prior_map, config.prior_map, request.guess_world_imu, &pipeline);
   }
   const Eigen::Vector3d origin_world = prior.origin_world;
+  const double prior_loaded_after_s = SecondsSince(run_start);
 
   auto log = io::OpenLog(request.log, config.LogOptions());
   std::vector<ScanResult> results;
@@ -122,6 +133,9 @@ RunResult RunLog(const RunRequest& request) {
   io::Progress progress(request.label, 0, request.show_progress);
   io::LogMessage message;
   std::size_t scans = 0;
+  // Wall time from the start of the run (prior map loading included) to the first pose, and
+  // the process's CPU time (every thread) by then: what it takes on an idle machine.
+  double first_pose_after_s = std::nan(""), first_pose_cpu_s = std::nan("");
   while (log->Next(&message)) {
     if (message.kind == io::LogMessage::Kind::kImu) {
       pipeline.AddImu(message.imu);
@@ -130,6 +144,10 @@ RunResult RunLog(const RunRequest& request) {
     pipeline.AddScan(std::move(message.scan));
     pipeline.Process(&results);
     consume();
+    if (std::isnan(first_pose_after_s) && !results.empty()) {
+      first_pose_after_s = SecondsSince(run_start);
+      first_pose_cpu_s = ProcessCpuSeconds();
+    }
     progress.Update(++scans);
     if (pipeline.status() == OdometryPipeline::Status::kFailed) break;
   }
@@ -148,9 +166,17 @@ RunResult RunLog(const RunRequest& request) {
   io::WriteTum(request.out_dir + "/trajectory_live.tum", run.live_trajectory);
   WriteOdometryCsv(request.out_dir + "/odometry.csv", results, origin_world, config.output);
   WriteTimingCsv(request.out_dir + "/timing.csv", results);
-  WriteWorldCloud(request.out_dir + "/map.pcd", pipeline.map().Flatten(), origin_world);
-  if (localizing && pipeline.map().run_size() > 0) {
+  // A tiled prior is never whole in memory: its run writes only what it added, as tiles.
+  const bool tiled = !prior.tiled_dir.empty();
+  const bool added = pipeline.map().run_size() > 0 || !pipeline.map().windowed_out().empty();
+  if (!tiled) WriteWorldCloud(request.out_dir + "/map.pcd", pipeline.map().Flatten(), origin_world);
+  if (localizing && !tiled && pipeline.map().run_size() > 0) {
     WriteWorldCloud(request.out_dir + "/map_added.pcd", pipeline.map().FlattenRun(), origin_world);
+  }
+  std::size_t tiles_added = 0;
+  if (tiled && added) {
+    tiles_added = WriteAddedTiles(request.out_dir + "/map_added", prior, pipeline,
+                                  config.pipeline.map.voxel_size_m);
   }
   const PointCloud no_dense_map;
   const PointCloud& dense = dense_map ? dense_map->points() : no_dense_map;
@@ -185,12 +211,22 @@ RunResult RunLog(const RunRequest& request) {
   j["cpu_ms_per_scan_p99"] = Percentile(cpu_ms, 0.99);
   j["peak_memory_mb"] = usage.ru_maxrss / 1024.0;
   j["elapsed_s"] = progress.ElapsedSeconds();
+  j["prior_map_loaded_after_s"] = prior_loaded_after_s;
+  j["first_pose_after_s"] = first_pose_after_s;
+  j["first_pose_cpu_s"] = first_pose_cpu_s;
   j["origin_world"] = io::Json::array({origin_world.x(), origin_world.y(), origin_world.z()});
   j["events"] = EventsJson(pipeline.events(), origin_world);
   if (localizing) {
     j["prior_map"] = request.prior_map;
     j["prior_map_points"] = prior.num_kept;
-    j["c2c"] = CloudToCloudJson(dense, prior.points_local, request.c2c_max_distance_m);
+    if (tiled) {
+      j["prior_map_tiles"] = TiledPriorJson(pipeline);
+      j["prior_map_tiles"]["added_points_written"] = tiles_added;
+    }
+    const auto reference =
+        PriorSearch(prior, pipeline,
+                    static_cast<std::size_t>(config.prior_map.tile_cache_million_points * 1e6));
+    j["c2c"] = CloudToCloudJson(dense, *reference, request.c2c_max_distance_m);
   }
   io::WriteJsonFile(request.out_dir + "/summary.json", j);
   return run;

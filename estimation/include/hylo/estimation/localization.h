@@ -77,6 +77,8 @@ struct LocalizationEvent {
     kRelocalized,            ///< a relocalization was accepted (pose reset)
     kRelocalizationFailed,   ///< ... was rejected (retried later)
     kHybridStarted,          ///< scans are now added to the map
+    kLeftMap,                ///< the vehicle left the tiled prior's tiles: odometry only
+    kReenteredMap,           ///< ... and came back onto them: localization again
   };
   Kind kind = Kind::kInitialized;
   int64_t t_ns = 0;                         ///< scan end time of the decision, ns
@@ -91,7 +93,7 @@ struct LocalizationEvent {
 ScanHealth EvaluateScanHealth(const UpdateSummary& update, const LocalizationOptions& options);
 
 /// "initialized", "initialization_failed", "lost", "relocalized", "relocalization_failed",
-/// "hybrid_started".
+/// "hybrid_started", "left_map", "reentered_map".
 std::string ToString(LocalizationEvent::Kind kind);
 
 }  // namespace hylo::estimation

@@ -66,6 +66,12 @@ class LocalizationSupervisor {
                  const registration::NeighborSearch& map, Estimator* estimator, ScanResult* result);
   /// Hybrid mode: whether the scan of `result` may extend the map.
   bool MapUpdateAllowed(const ScanResult& result);
+  /// Whether the vehicle is on the prior's tiles (a tiled prior; always true otherwise), told
+  /// before each scan. Off them there is no prior to localize in: loss and relocalization are
+  /// suspended and registered scans extend the run's map (odometry mode) until it comes back;
+  /// both moments are events. `T_map_imu`: the pose the event records.
+  void SetOnMap(bool on_map, int64_t t_ns, const Eigen::Isometry3d& T_map_imu);
+  bool on_map() const { return on_map_; }
 
   bool lost() const { return lost_; }
   /// map → odom (REP-105): relocalization jumps go here, so odom → imu stays continuous.
@@ -110,6 +116,7 @@ class LocalizationSupervisor {
   bool started_ = false;
   int64_t start_t_ns_ = 0;
   bool hybrid_started_ = false;
+  bool on_map_ = true;
   lie::SE3d T_map_odom_;
   std::vector<LocalizationEvent> events_;
   std::size_t scans_initializer_ = 0;  // static scans and relocalization attempts

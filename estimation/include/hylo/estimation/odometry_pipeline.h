@@ -76,6 +76,15 @@ class OdometryPipeline {
   /// std::nullopt to search the whole map. Both before the first scan; then odometry starts
   /// only from a pose the ICP initializer accepted, or the pipeline fails with the reason.
   void SetPriorMap(const PointCloud& points_map);
+  /// Localization in a tiled prior instead (mapping/tiles.h; the map frame is the tiles' local
+  /// frame): `streamer` keeps the tiles around the vehicle, each scan posts the position to it
+  /// and swaps in the tiles it finished (a failed load fails the pipeline with its reason);
+  /// the start and a lost vehicle read other tiles on demand through a cache of at most
+  /// `cache_max_points`. The global localizer's raster is built from `overview_points` (the
+  /// map thinned for it; empty: no global search). Off the tiles the supervisor runs odometry
+  /// only (events left_map / reentered_map). Before the first scan, as SetPriorMap.
+  void SetTiledPriorMap(std::shared_ptr<mapping::TileStreamer> streamer,
+                        const PointCloud& overview_points, std::size_t cache_max_points);
   void SetInitialGuess(const std::optional<Eigen::Isometry3d>& T_map_imu_guess);
   /// Relocalize around `T_map_imu_guess` with the next scan (e.g. ROS /initialpose). Before
   /// the start it replaces the initial guess. Needs a prior map.
@@ -101,6 +110,7 @@ class OdometryPipeline {
   const mapping::MapManager& map() const { return map_; }
   mapping::MapManager& map() { return map_; }
   const Estimator& estimator() const { return *estimator_; }
+  const OdometryPipelineOptions& options() const { return options_; }
 
  private:
   // odometry_pipeline_start.cpp: true when the group's scan was consumed by the start.
@@ -111,6 +121,9 @@ class OdometryPipeline {
   void AddStaticScan(const MeasurementGroup& group);
   void StartLocalization(const MeasurementGroup& group);
   void Fail(const std::string& why);
+  void BuildGlobalMap(const PointCloud& points_map);
+  // A tiled prior before each scan: the loader's news, its failures, on or off the tiles.
+  bool FollowTiledPrior();
   // odometry_pipeline.cpp
   bool ProcessScan(MeasurementGroup* group, ScanResult* result);
   void UpdateMap(const DeskewedScan& scan, ScanResult* result);

@@ -19,6 +19,16 @@ struct PriorMapOptions {
                                         ///< >= 0
   double origin_granularity_m = 100.0;  ///< the origin is the first finite point rounded to
                                         ///< this, m (see ChooseOrigin), >= 0
+  // --- a tiled map (a directory written by `hylo tile`; its tiles are streamed, tiles.h) ---
+  double tile_load_radius_m = 0.0;     ///< tiles whose square comes within this of the vehicle
+                                       ///< are held, m; 0 = the scan's reach
+                                       ///< (preprocess.max_range_m + planes'
+                                       ///< max_neighbor_distance_m), >= 0
+  double tile_unload_margin_m = 25.0;  ///< held tiles are dropped beyond the load radius + this
+                                       ///< (a vehicle on a tile edge does not reload it), m, >= 0
+  double tile_cache_million_points = 4.0;  ///< tiles read on demand (the start, a lost
+                                           ///< vehicle, the final metrics) are cached up to
+                                           ///< this many points, million, > 0
   bool IsValid(std::string* why) const;
 };
 
@@ -28,6 +38,9 @@ struct PriorMap {
   std::size_t num_input = 0;       ///< points given
   std::size_t num_non_finite = 0;  ///< NaN/inf points dropped
   std::size_t num_kept = 0;        ///< points after downsampling (= points_local.size())
+  std::string tiled_dir;           ///< a tiled map: its directory; points_local is then empty
+                                   ///< (the pipeline streams the tiles) and num_kept counts
+                                   ///< every tile's points
 };
 
 /// Builds the prior map from world positions. Throws std::invalid_argument naming
