@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cstdint>
 #include <cstdlib>
+#include <limits>
 
 #include "cloud_fields.h"
 #include "hylo/io/cloud_io.h"
@@ -110,6 +111,12 @@ void BuildFields(const std::string& path, const RawHeader& raw, PcdHeader* heade
     f.type = ParseType(path, raw.types[i], ParseCount(path, "SIZE", raw.sizes[i]));
     f.count = raw.counts.empty() ? 1 : ParseCount(path, "COUNT", raw.counts[i]);
     if (f.count == 0) ThrowFileError(path, "malformed header: field " + f.name + " has COUNT 0");
+    // A point record must have a size that size_t holds (a wrapped one would read garbage).
+    const std::size_t room = std::numeric_limits<std::size_t>::max() - header->point_step;
+    if (f.count > room / static_cast<std::size_t>(f.type.size)) {
+      ThrowFileError(path, "malformed header: field " + f.name + " has COUNT " +
+                               std::to_string(f.count) + ", more bytes than a point can hold");
+    }
     f.offset = header->point_step;
     header->point_step += header->FieldBytes(f);
     const int slot = internal::SlotForName(f.name);
@@ -139,6 +146,10 @@ PcdHeader ReadHeader(const std::string& path, std::ifstream* in) {
       ThrowFileError(path, "malformed header: unknown DATA '" + line + "'");
     }
     if (!raw.has_width) ThrowFileError(path, "malformed header: no WIDTH line");
+    if (header.height != 0 &&
+        header.width > std::numeric_limits<std::size_t>::max() / header.height) {
+      ThrowFileError(path, "malformed header: WIDTH * HEIGHT overflows");
+    }
     if (!raw.has_points) header.points = header.width * header.height;
     if (header.points != header.width * header.height) {
       ThrowFileError(path, "malformed header: POINTS " + std::to_string(header.points) +
@@ -236,6 +247,11 @@ CloudFile ReadAsciiBody(const std::string& path, const PcdHeader& header,
     values_per_point += f.count;
   }
   internal::CloudBuilder builder(path, present, std::min(header.points, body.size()));
+  // Each value takes at least one character: more per point than the body holds is a
+  // truncated file, found before the per-point buffer is sized from the header's counts.
+  if (header.points > 0 && values_per_point > body.size()) {
+    Truncated(path, body.size(), std::to_string(values_per_point) + " ascii values per point");
+  }
   const std::string text(body.begin(), body.end());
   std::vector<double> values(values_per_point);
   double record[internal::kNumSlots] = {};

@@ -2,6 +2,7 @@
 // binary_big_endian. Only the `vertex` element is decoded; the elements before it (rare)
 // are read past, the ones after it (faces) are not read at all.
 
+#include <cctype>
 #include <cstdlib>
 
 #include "cloud_fields.h"
@@ -93,7 +94,10 @@ PlyHeader ReadHeader(const std::string& path, std::ifstream* in) {
       e.name = words[1];
       char* end = nullptr;
       e.count = std::strtoull(words[2].c_str(), &end, 10);
-      if (*end != '\0') ThrowFileError(path, "malformed header: bad element count " + words[2]);
+      // strtoull accepts "-1" (as 2^64 - 1): a count is digits only.
+      if (*end != '\0' || !std::isdigit(static_cast<unsigned char>(words[2][0]))) {
+        ThrowFileError(path, "malformed header: bad element count " + words[2]);
+      }
       header.elements.push_back(e);
     } else if (words[0] == "property") {
       AddProperty(path, words, &header);
@@ -133,8 +137,13 @@ class BodyCursor {
       Next(p.type);
       return;
     }
+    // Every value takes at least one byte, so a list longer than the bytes left is corrupt
+    // (an ascii length may also be negative, NaN or 1e300).
     const double count = Next(p.count_type);
-    if (count < 0) ThrowFileError(path_, "corrupt: negative list length");
+    if (!(count >= 0.0 && count <= static_cast<double>(body_.size() - pos_))) {
+      ThrowFileError(path_, "corrupt: list length " + std::to_string(count) + " after " +
+                                std::to_string(items_done) + " items");
+    }
     for (std::size_t k = 0; k < static_cast<std::size_t>(count); ++k) Next(p.type);
   }
 
@@ -179,6 +188,8 @@ CloudFile ReadPly(const std::string& path) {
   BodyCursor cursor(path, header.format, internal::ReadRest(&in));
   for (const PlyElement& element : header.elements) {
     if (element.name == "vertex") return ReadVertices(path, element, &cursor);
+    // An element without properties takes no bytes, however many it announces.
+    if (element.properties.empty()) continue;
     for (std::size_t i = 0; i < element.count; ++i, ++cursor.items_done) {
       for (const PlyProperty& p : element.properties) cursor.Skip(p);
     }
