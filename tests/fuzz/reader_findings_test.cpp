@@ -172,6 +172,14 @@ TEST_F(ReaderFindingsFiles, PcdAsciiCountBeyondTheBodyIsTruncatedNotAnAllocation
   ExpectOneLineNaming(ErrorOf<std::runtime_error>([&] { io::ReadCloud(path); }), path, "truncated");
 }
 
+TEST_F(ReaderFindingsFiles, PcdAsciiWithoutPointsIgnoresItsCounts) {
+  // The same header with WIDTH 0 once sized a buffer of 1e11 values for the points it lacks.
+  const std::string path = WriteFile(dir_, "ascii_empty.pcd",
+                                     "VERSION .7\nFIELDS x y z w\nSIZE 4 4 4 4\nTYPE F F F F\n"
+                                     "COUNT 1 1 1 100000000000\nWIDTH 0\nDATA ascii\n1 2 3 4\n");
+  EXPECT_TRUE(io::ReadCloud(path).positions.empty());
+}
+
 TEST_F(ReaderFindingsFiles, PcdCompressedBlockCannotAnnounceMoreThanLzfExpandsTo) {
   std::string body(8, '\0');
   const uint32_t compressed = 16, uncompressed = 3'000'000'000u;  // 1e9 points of 3 bytes

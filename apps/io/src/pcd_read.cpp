@@ -57,8 +57,8 @@ ScalarType ParseType(const std::string& path, const std::string& type, std::size
   } else if (type == "U" && int_size) {
     t.kind = ScalarKind::kUnsigned;
   } else {
-    ThrowFileError(path, "malformed header: unsupported TYPE " + type + " with SIZE " +
-                             std::to_string(size));
+    ThrowFileError(
+        path, "malformed header: unsupported TYPE " + type + " with SIZE " + std::to_string(size));
   }
   return t;
 }
@@ -68,8 +68,8 @@ struct RawHeader {
   bool has_width = false, has_points = false;
 };
 
-void ApplyHeaderLine(const std::string& path, const std::vector<std::string>& words,
-                     RawHeader* raw, PcdHeader* header) {
+void ApplyHeaderLine(const std::string& path, const std::vector<std::string>& words, RawHeader* raw,
+                     PcdHeader* header) {
   const std::string key = words[0];
   const std::vector<std::string> values(words.begin() + 1, words.end());
   auto single = [&]() {
@@ -101,7 +101,8 @@ void ApplyHeaderLine(const std::string& path, const std::vector<std::string>& wo
 void BuildFields(const std::string& path, const RawHeader& raw, PcdHeader* header) {
   const std::size_t n = raw.names.size();
   if (n == 0) ThrowFileError(path, "malformed header: no FIELDS line");
-  if (raw.sizes.size() != n || raw.types.size() != n || (!raw.counts.empty() && raw.counts.size() != n)) {
+  if (raw.sizes.size() != n || raw.types.size() != n ||
+      (!raw.counts.empty() && raw.counts.size() != n)) {
     ThrowFileError(path, "malformed header: FIELDS, SIZE, TYPE and COUNT disagree in length");
   }
   bool seen[internal::kNumSlots] = {};
@@ -152,8 +153,8 @@ PcdHeader ReadHeader(const std::string& path, std::ifstream* in) {
     }
     if (!raw.has_points) header.points = header.width * header.height;
     if (header.points != header.width * header.height) {
-      ThrowFileError(path, "malformed header: POINTS " + std::to_string(header.points) +
-                               " != WIDTH * HEIGHT");
+      ThrowFileError(
+          path, "malformed header: POINTS " + std::to_string(header.points) + " != WIDTH * HEIGHT");
     }
     BuildFields(path, raw, &header);
     return header;
@@ -162,8 +163,8 @@ PcdHeader ReadHeader(const std::string& path, std::ifstream* in) {
 }
 
 void Truncated(const std::string& path, std::size_t have, const std::string& promise) {
-  ThrowFileError(path, "truncated: " + std::to_string(have) + " data bytes, header promises " +
-                           promise);
+  ThrowFileError(path,
+                 "truncated: " + std::to_string(have) + " data bytes, header promises " + promise);
 }
 
 std::string PointsOf(const PcdHeader& header) {
@@ -247,9 +248,11 @@ CloudFile ReadAsciiBody(const std::string& path, const PcdHeader& header,
     values_per_point += f.count;
   }
   internal::CloudBuilder builder(path, present, std::min(header.points, body.size()));
+  // No point to read: the body is not looked at, nor a buffer sized from the header's counts.
+  if (header.points == 0) return builder.Finish();
   // Each value takes at least one character: more per point than the body holds is a
   // truncated file, found before the per-point buffer is sized from the header's counts.
-  if (header.points > 0 && values_per_point > body.size()) {
+  if (values_per_point > body.size()) {
     Truncated(path, body.size(), std::to_string(values_per_point) + " ascii values per point");
   }
   const std::string text(body.begin(), body.end());
