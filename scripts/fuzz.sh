@@ -4,6 +4,10 @@
 # coverage (libFuzzer's final cov/ft), corpus size and the findings (crashes, timeouts > 1 s,
 # out-of-memory, leaks). Exit status 1 when anything was found.
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default 60 s, every target)
+# HYLO_FUZZ_RUNS=N also stops a target after N executions, whichever comes first (the issue's
+# bar is 10 minutes or 1 M executions: HYLO_FUZZ_RUNS=1000000 scripts/fuzz.sh 600).
+# HYLO_FUZZ_SUMMARY names the summary file (default <build dir>/fuzz_summary.txt), so that two
+# runs over different targets can share the build.
 # The grown corpora stay in build-fuzz/corpus/<target> (a rerun continues from them); findings
 # go to build-fuzz/findings/<target>/<run time>/. Reproduce one: build-fuzz/tests/fuzz/hylo_fuzz_<target>
 # <file>; once the reader is fixed, copy the file to tests/fuzz/regressions/<target>/ so that
@@ -37,7 +41,7 @@ cmake --build "$build_dir" -j"${HYLO_FUZZ_JOBS:-$(nproc)}" --target hylo_fuzzers
 # One line of libFuzzer's log: the value after `key` on the last line that has it.
 last_value() { grep -o "$2 *[0-9]*" "$1" | tail -n 1 | grep -o '[0-9]*$' || echo "-"; }
 
-summary="$build_dir/fuzz_summary.txt"
+summary="${HYLO_FUZZ_SUMMARY:-$build_dir/fuzz_summary.txt}"
 printf '%-16s %6s %12s %8s %6s %7s %6s %7s %8s %5s %5s %s\n' target seconds executions \
   exec/s cov ft corpus crashes timeouts ooms leaks status >"$summary"
 found=0
@@ -50,6 +54,7 @@ for t in "${targets[@]}"; do
   [ "$t" = run_config ] && extra=(config)
   [ -d "tests/fuzz/corpus/$t" ] && extra+=("tests/fuzz/corpus/$t")
   [ -d "tests/fuzz/regressions/$t" ] && extra+=("tests/fuzz/regressions/$t")
+  [ -n "${HYLO_FUZZ_RUNS:-}" ] && extra_flags=(-runs="$HYLO_FUZZ_RUNS") || extra_flags=()
   dict=()
   [ -f "tests/fuzz/dict/$t.dict" ] && dict=(-dict="tests/fuzz/dict/$t.dict")
   echo "[fuzz] $t for ${seconds} s (log: $log)"
@@ -57,8 +62,8 @@ for t in "${targets[@]}"; do
   status=ok
   # The first folder receives new inputs; the others are read-only seeds.
   "$build_dir/tests/fuzz/hylo_fuzz_$t" -max_total_time="$seconds" -timeout=1 \
-    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$findings/" "${dict[@]}" \
-    "$corpus" "$build_dir/seeds/$t" "${extra[@]}" >"$log" 2>&1 || status=failed
+    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$findings/" "${extra_flags[@]}" \
+    "${dict[@]}" "$corpus" "$build_dir/seeds/$t" "${extra[@]}" >"$log" 2>&1 || status=failed
   elapsed=$(($(date +%s) - start))
   crashes=$(find "$findings" -type f -name 'crash-*' | wc -l)
   timeouts=$(find "$findings" -type f -name 'timeout-*' | wc -l)
