@@ -14,6 +14,7 @@
 
 #include "hylo/config/run_config.h"
 #include "hylo/io/cloud_io.h"
+#include "hylo/io/json.h"
 #include "hylo/io/pointcloud2.h"
 #include "hylo/io/ros_bridge.h"
 #include "hylo/io/scan_folder.h"
@@ -192,6 +193,13 @@ TEST_F(ReaderFindingsFiles, PcdCompressedBlockCannotAnnounceMoreThanLzfExpandsTo
                                          body);
   ExpectOneLineNaming(ErrorOf<std::runtime_error>([&] { io::ReadCloud(path); }), path,
                       "16 LZF bytes cannot expand to the 3000000000 bytes");
+}
+
+TEST_F(ReaderFindingsFiles, JsonNumberBeyondDoubleIsAnErrorNamingTheFile) {
+  // nlohmann reports it as out_of_range, not as a parse error: it once escaped the reader.
+  const std::string path = WriteFile(dir_, "overflow.json", "{\"a\": 22222222E2222222}\n");
+  ExpectOneLineNaming(ErrorOf<std::runtime_error>([&] { io::ReadJsonFile(path); }), path,
+                      "number overflow parsing '22222222E2222222'");
 }
 
 const char kPlyXyz[] = "property float x\nproperty float y\nproperty float z\n";
