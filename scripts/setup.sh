@@ -14,6 +14,7 @@ packages=(
   libtf2-ros-dev libstd-srvs-dev ros-core
   python3-std-srvs python3-nav-msgs python3-sensor-msgs  # rostopic/rosservice on its types
   gnuplot-nox
+  clang libclang-rt-dev  # scripts/fuzz.sh, scripts/sanitize.sh: libFuzzer, sanitizer runtimes
 )
 
 SUDO=""

@@ -1,6 +1,7 @@
 // Parsing of the initializer's guess (see pose_guess.h).
 #include "hylo/registration/pose_guess.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -65,6 +66,11 @@ Eigen::Isometry3d PoseGuessFromNumbers(const std::vector<double>& values) {
 }
 
 Eigen::Isometry3d ParsePoseGuess(const std::string& text) {
+  // The text is echoed in errors: on one line, whatever line breaks the user typed.
+  std::string echoed = text;
+  for (char& ch : echoed) {
+    if (std::iscntrl(static_cast<unsigned char>(ch))) ch = ' ';
+  }
   std::string spaced = text;
   for (char& ch : spaced) {
     if (ch == ',' || ch == ';' || ch == '\t' || ch == '[' || ch == ']') ch = ' ';
@@ -77,8 +83,8 @@ Eigen::Isometry3d ParsePoseGuess(const std::string& text) {
     char* end = nullptr;
     const double value = std::strtod(token.c_str(), &end);
     if (end == token.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(value)) {
-      throw std::invalid_argument("pose guess: value " + std::to_string(values.size() + 1) +
-                                  " '" + token + "' is not a finite number (in '" + text + "')");
+      throw std::invalid_argument("pose guess: value " + std::to_string(values.size() + 1) + " '" +
+                                  token + "' is not a finite number (in '" + echoed + "')");
     }
     values.push_back(value);
   }

@@ -82,6 +82,10 @@ void YamlReadVisitor::Fail(const std::string& key_path, const std::string& reaso
 
 void YamlReadVisitor::RejectUnknownKeys() const {
   for (const auto& entry : node_) {
+    // YAML allows a list or a map as a key ("{[a]: 1}"); none is a key of ours.
+    if (!entry.first.IsScalar()) {
+      Fail(path_.empty() ? "top level" : path_, "a key that is " + Describe(entry.first));
+    }
     const std::string key = entry.first.as<std::string>();
     if (used_.count(key) != 0) continue;
     if (const char* hint = MovedKeyHint(Join(key.c_str()))) {

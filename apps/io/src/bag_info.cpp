@@ -23,25 +23,20 @@ namespace {
 /// The stamp of a message: header.stamp for the types hylo reads, else the receive time.
 int64_t StampOf(const rosbag::MessageInstance& m, bool* from_header) {
   if (m.isType<sensor_msgs::Imu>()) {
-    if (auto imu = m.instantiate<sensor_msgs::Imu>()) {
-      *from_header = true;
-      return ros_bridge::FromRosTime(imu->header.stamp);
-    }
+    *from_header = true;
+    return ros_bridge::FromRosTime(detail::ReadMessage<sensor_msgs::Imu>(m).header.stamp);
   }
   if (m.isType<sensor_msgs::PointCloud2>()) {
-    if (auto cloud = m.instantiate<sensor_msgs::PointCloud2>()) {
-      *from_header = true;
-      return ros_bridge::FromRosTime(cloud->header.stamp);
-    }
+    *from_header = true;
+    return ros_bridge::FromRosTime(detail::ReadMessage<sensor_msgs::PointCloud2>(m).header.stamp);
   }
   *from_header = false;
   return ros_bridge::FromRosTime(m.getTime());
 }
 
 void DescribeFields(const rosbag::MessageInstance& first, BagTopicDescription* topic) {
-  auto cloud = first.instantiate<sensor_msgs::PointCloud2>();
-  if (cloud == nullptr) return;
-  for (const auto& f : cloud->fields) {
+  if (!first.isType<sensor_msgs::PointCloud2>()) return;
+  for (const auto& f : detail::ReadMessage<sensor_msgs::PointCloud2>(first).fields) {
     topic->point_fields.push_back({f.name, f.datatype, f.offset, f.count});
   }
   topic->detected_convention = DetectPointTimeConvention(topic->point_fields);

@@ -1,12 +1,18 @@
 #pragma once
-// Private to hylo_io: opening a ROS1 bag with one-line errors that name the file.
+// Private to hylo_io: opening a ROS1 bag with one-line errors that name the file, and
+// reading one of its messages.
 
 #include <rosbag/bag.h>
 #include <rosbag/exceptions.h>
+#include <rosbag/message_instance.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+#include "hylo/io/ros_bridge.h"
 
 namespace hylo::io::detail {
 
@@ -28,6 +34,18 @@ inline void OpenForReading(const std::string& path, rosbag::Bag* bag) {
     throw std::runtime_error("bag '" + path + "': cannot be read, truncated or not a ROS1 bag (" +
                              e.what() + ")");
   }
+}
+
+/// The message, deserialized with ros_bridge::Deserialize rather than
+/// MessageInstance::instantiate, whose stream lets a corrupt array length allocate gigabytes.
+/// The caller checks the message type. Throws std::runtime_error (ROS or rosbag exceptions)
+/// on corrupt data.
+template <class Message>
+Message ReadMessage(const rosbag::MessageInstance& m) {
+  std::vector<uint8_t> bytes(m.size());
+  ros::serialization::OStream out(bytes.data(), static_cast<uint32_t>(bytes.size()));
+  m.write(out);
+  return ros_bridge::Deserialize<Message>(bytes.data(), bytes.size());
 }
 
 }  // namespace hylo::io::detail

@@ -108,9 +108,11 @@ class BagReader : public LogReader {
       if (convention_ == PointTimeConvention::kAuto) convention_ = PointTimeConvention::kNone;
       return;
     }
-    auto msg = scans.begin()->instantiate<sensor_msgs::PointCloud2>();
-    if (msg == nullptr) throw std::runtime_error("bag '" + path_ + "': unreadable PointCloud2");
-    PointCloud2Message cloud = ros_bridge::FromRos(std::move(*msg));
+    if (!scans.begin()->isType<sensor_msgs::PointCloud2>()) {
+      throw std::runtime_error("bag '" + path_ + "': unreadable PointCloud2");
+    }
+    PointCloud2Message cloud =
+        ros_bridge::FromRos(detail::ReadMessage<sensor_msgs::PointCloud2>(*scans.begin()));
     if (convention_ == PointTimeConvention::kAuto) {
       convention_ = DetectPointTimeConvention(cloud.fields);
     }
@@ -123,11 +125,13 @@ class BagReader : public LogReader {
   }
 
   bool ReadScan(const rosbag::MessageInstance& m, LogMessage* message) {
-    auto msg = m.instantiate<sensor_msgs::PointCloud2>();
-    if (msg == nullptr) throw std::runtime_error("unreadable PointCloud2 on " + m.getTopic());
+    if (!m.isType<sensor_msgs::PointCloud2>()) {
+      throw std::runtime_error("unreadable PointCloud2 on " + m.getTopic());
+    }
     message->kind = LogMessage::Kind::kScan;
-    message->scan = DecodePointCloud2(ros_bridge::FromRos(std::move(*msg)), convention_,
-                                      &counters_.dropped_non_finite_points);
+    message->scan =
+        DecodePointCloud2(ros_bridge::FromRos(detail::ReadMessage<sensor_msgs::PointCloud2>(m)),
+                          convention_, &counters_.dropped_non_finite_points);
     ++counters_.scan_messages;
     if (message->scan.points.empty()) ++counters_.empty_scans;
     return true;
@@ -135,15 +139,13 @@ class BagReader : public LogReader {
 
   /// False for a sample with NaN/inf values: skipped and counted.
   bool ReadImu(const rosbag::MessageInstance& m, LogMessage* message) {
-    auto msg = m.instantiate<sensor_msgs::Imu>();
-    if (msg == nullptr) throw std::runtime_error("unreadable Imu on " + m.getTopic());
-    ImuSample& imu = message->imu;
-    imu.t_ns = ros_bridge::FromRosTime(msg->header.stamp);
+    if (!m.isType<sensor_msgs::Imu>()) {
+      throw std::runtime_error("unreadable Imu on " + m.getTopic());
+    }
     // Some drivers (Livox) publish g instead of m/s^2; the configuration says which.
-    imu.accel_imu = options_.imu_accel_scale * Eigen::Vector3d(msg->linear_acceleration.x,
-                                                               msg->linear_acceleration.y,
-                                                               msg->linear_acceleration.z);
-    imu.gyro_imu = {msg->angular_velocity.x, msg->angular_velocity.y, msg->angular_velocity.z};
+    message->imu =
+        ros_bridge::FromRos(detail::ReadMessage<sensor_msgs::Imu>(m), options_.imu_accel_scale);
+    const ImuSample& imu = message->imu;
     if (!imu.accel_imu.allFinite() || !imu.gyro_imu.allFinite()) {
       ++counters_.dropped_non_finite_imu;
       return false;

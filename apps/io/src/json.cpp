@@ -40,6 +40,9 @@ Json ReadJsonFile(const std::string& path) {
   } catch (const Json::parse_error& e) {
     throw std::runtime_error("'" + path + "': not valid JSON at byte " + std::to_string(e.byte) +
                              ": " + WithoutExceptionId(e.what()));
+  } catch (const Json::out_of_range& e) {
+    // A number beyond double's range ("1E400") is reported as out of range, without a byte.
+    throw std::runtime_error("'" + path + "': not valid JSON: " + WithoutExceptionId(e.what()));
   }
 }
 

@@ -2,6 +2,7 @@
 // (pointclouds.org, "The PCD (Point Cloud Data) file format").
 
 #include <charconv>
+#include <limits>
 
 #include "pcd_format.h"
 
@@ -83,6 +84,12 @@ void BuildFields(const std::string& path, const RawHeader& raw, PcdHeader* heade
     f.type = ParseType(path, raw.types[i], ParseCount(path, "SIZE", raw.sizes[i]));
     f.count = raw.counts.empty() ? 1 : ParseCount(path, "COUNT", raw.counts[i]);
     if (f.count == 0) ThrowFileError(path, "malformed header: field " + f.name + " has COUNT 0");
+    // A point record must have a size that size_t holds (a wrapped one would read garbage).
+    const std::size_t room = std::numeric_limits<std::size_t>::max() - header->point_step;
+    if (f.count > room / static_cast<std::size_t>(f.type.size)) {
+      ThrowFileError(path, "malformed header: field " + f.name + " has COUNT " +
+                               std::to_string(f.count) + ", more bytes than a point can hold");
+    }
     f.offset = header->point_step;
     header->point_step += header->FieldBytes(f);
     const int slot = SlotForName(f.name);
@@ -114,6 +121,10 @@ PcdHeader ReadPcdHeader(const std::string& path, std::ifstream* in) {
       ThrowFileError(path, "malformed header: unknown DATA '" + line + "'");
     }
     if (!raw.has_width) ThrowFileError(path, "malformed header: no WIDTH line");
+    if (header.height != 0 &&
+        header.width > std::numeric_limits<std::size_t>::max() / header.height) {
+      ThrowFileError(path, "malformed header: WIDTH * HEIGHT overflows");
+    }
     if (!raw.has_points) header.points = header.width * header.height;
     if (header.points != header.width * header.height) {
       ThrowFileError(

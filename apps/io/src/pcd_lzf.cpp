@@ -27,6 +27,14 @@ std::vector<uint8_t> LzfCompress(const std::string& path, const std::vector<uint
 
 std::vector<uint8_t> LzfDecompress(const std::string& path, const uint8_t* input, std::size_t size,
                                    std::size_t expected) {
+  // The most an LZF byte can expand to: a 3-byte back reference copies at most 264 bytes.
+  // Checked before the output is allocated, so a corrupt header cannot ask for gigabytes.
+  constexpr std::size_t kMaxExpansion = 88;
+  if (expected / kMaxExpansion > size) {
+    ThrowFileError(path, "corrupt compressed data: " + std::to_string(size) +
+                             " LZF bytes cannot expand to the " + std::to_string(expected) +
+                             " bytes the header announces");
+  }
   std::vector<uint8_t> out(expected);
   if (size == 0 && expected == 0) return out;
   if (size > UINT_MAX || expected > UINT_MAX) ThrowFileError(path, "too large for LZF");

@@ -48,6 +48,7 @@ class PcdStream final : public CloudStream {
       if (f.slot != internal::kNone) present_[f.slot] = true;
     }
     internal::CloudBuilder check(path, present_, 0);  // x, y and z must be there
+    if (header_.data == "ascii") OpenAscii();
     if (header_.data == "binary") OpenBinary();
     if (header_.data == "binary_compressed") OpenCompressed(whole_block);
   }
@@ -68,6 +69,18 @@ class PcdStream final : public CloudStream {
   }
 
  private:
+  // Each value takes at least one character: more per point than the body holds is a
+  // truncated file, found before a per-point buffer is sized from the header's counts.
+  void OpenAscii() {
+    if (header_.points == 0) return;  // nothing to read, whatever the counts say
+    std::size_t values_per_point = 0;
+    for (const PcdField& f : header_.fields) values_per_point += f.count;
+    const std::size_t body = internal::BytesLeft(&in_);
+    if (values_per_point > body) {
+      Truncated(path_, body, std::to_string(values_per_point) + " ascii values per point");
+    }
+  }
+
   void OpenBinary() {
     const std::size_t body = internal::BytesLeft(&in_);
     if (body / header_.point_step < header_.points) Truncated(path_, body, PointsOf(header_));

@@ -3,6 +3,8 @@
 // `vertex` element is decoded.
 
 #include <algorithm>
+#include <cctype>
+#include <cstdint>
 #include <cstdlib>
 #include <memory>
 
@@ -97,7 +99,10 @@ PlyHeader ReadHeader(const std::string& path, std::ifstream* in) {
       e.name = words[1];
       char* end = nullptr;
       e.count = std::strtoull(words[2].c_str(), &end, 10);
-      if (*end != '\0') ThrowFileError(path, "malformed header: bad element count " + words[2]);
+      // strtoull accepts "-1" (as 2^64 - 1): a count is digits only.
+      if (*end != '\0' || !std::isdigit(static_cast<unsigned char>(words[2][0]))) {
+        ThrowFileError(path, "malformed header: bad element count " + words[2]);
+      }
       header.elements.push_back(e);
     } else if (words[0] == "property") {
       AddProperty(path, words, &header);
@@ -133,7 +138,11 @@ class BodyCursor {
       return;
     }
     const double count = Next(p.count_type);
-    if (count < 0) ThrowFileError(path_, "corrupt: negative list length");
+    // An ascii length may also be NaN or 1e300; PLY's widest count type is a 32-bit integer.
+    if (!(count >= 0.0 && count <= static_cast<double>(UINT32_MAX))) {
+      ThrowFileError(path_, "corrupt: list length " + std::to_string(count) + " after " +
+                                std::to_string(items_done) + " items");
+    }
     for (std::size_t k = 0; k < static_cast<std::size_t>(count); ++k) Next(p.type);
   }
 
@@ -163,6 +172,8 @@ class PlyStream final : public CloudStream {
         vertex_ = element;
         break;
       }
+      // An element without properties takes no bytes, however many it announces.
+      if (element.properties.empty()) continue;
       for (std::size_t i = 0; i < element.count; ++i, ++cursor_->items_done) {
         for (const PlyProperty& p : element.properties) cursor_->Skip(p);
       }

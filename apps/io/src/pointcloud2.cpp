@@ -4,6 +4,7 @@
 #include "hylo/io/pointcloud2.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -48,10 +49,20 @@ struct PointReaders {
   TimeKind time_kind = TimeKind::kNone;
 };
 
+/// A field name as errors show it: names come from the message, and a control character
+/// (a line break, say) would split the one-line error.
+std::string Printable(std::string name) {
+  for (char& c : name) {
+    if (std::iscntrl(static_cast<unsigned char>(c))) c = '?';
+  }
+  return name;
+}
+
 std::string FieldList(const std::vector<PointFieldInfo>& fields) {
   std::ostringstream os;
   for (std::size_t i = 0; i < fields.size(); ++i) {
-    os << (i ? ", " : "") << fields[i].name << ':' << PointFieldDatatypeName(fields[i].datatype);
+    os << (i ? ", " : "") << Printable(fields[i].name) << ':'
+       << PointFieldDatatypeName(fields[i].datatype);
   }
   return fields.empty() ? std::string("none") : os.str();
 }
@@ -70,13 +81,14 @@ void CheckLayout(const PointCloud2Message& cloud) {
   for (const auto& f : cloud.fields) {
     const std::size_t size = PointFieldSize(f.datatype);
     if (size == 0) {
-      throw std::runtime_error("field '" + f.name + "' has unknown datatype " +
+      throw std::runtime_error("field '" + Printable(f.name) + "' has unknown datatype " +
                                std::to_string(f.datatype));
     }
     const uint64_t end = uint64_t{f.offset} + size * std::max<uint32_t>(f.count, 1);
     if (num_points > 0 && end > cloud.point_step) {
-      throw std::runtime_error("field '" + f.name + "' ends at byte " + std::to_string(end) +
-                               ", past point_step " + std::to_string(cloud.point_step));
+      throw std::runtime_error("field '" + Printable(f.name) + "' ends at byte " +
+                               std::to_string(end) + ", past point_step " +
+                               std::to_string(cloud.point_step));
     }
   }
   if (num_points == 0) return;
@@ -162,9 +174,11 @@ bool ToAbsoluteNs(double value, TimeKind kind, int64_t stamp_ns, int64_t* t_ns) 
       return true;
     }
   }
+  const bool relative = kind == TimeKind::kRelativeSeconds || kind == TimeKind::kRelativeNs;
+  // The offset and the time it gives (offset + stamp) must both stay inside int64.
   if (std::abs(value) > kMaxNs) return false;
-  *t_ns = std::llround(value);
-  if (kind == TimeKind::kRelativeSeconds || kind == TimeKind::kRelativeNs) *t_ns += stamp_ns;
+  if (relative && std::abs(value + static_cast<double>(stamp_ns)) > kMaxNs) return false;
+  *t_ns = std::llround(value) + (relative ? stamp_ns : 0);
   return true;
 }
 
@@ -178,9 +192,11 @@ void AssignTimes(int64_t stamp_ns, TimeKind kind, const std::vector<int64_t>& ti
   const bool relative = kind != TimeKind::kAbsoluteSeconds && kind != TimeKind::kAbsoluteNs;
   scan->t_ns = relative ? std::min(stamp_ns, *min_it) : *min_it;
   scan->end_t_ns = std::max(scan->t_ns, *max_it);
-  const int64_t span_ns = scan->end_t_ns - scan->t_ns;
-  if (span_ns > std::numeric_limits<int32_t>::max()) {
-    throw std::runtime_error("per-point times span " + std::to_string(span_ns * 1e-9) +
+  // Roughly in double first (times near both ends of int64 would overflow the subtraction),
+  // then exactly.
+  const double approx_span_ns = static_cast<double>(scan->end_t_ns) - scan->t_ns;
+  if (approx_span_ns > 4e9 || scan->end_t_ns - scan->t_ns > std::numeric_limits<int32_t>::max()) {
+    throw std::runtime_error("per-point times span " + std::to_string(approx_span_ns * 1e-9) +
                              " s, more than an int32 of ns offsets holds (wrong convention?)");
   }
   for (std::size_t i = 0; i < times_ns.size(); ++i) {
@@ -204,7 +220,8 @@ LidarScan DecodePointCloud2(const PointCloud2Message& cloud, PointTimeConvention
   std::vector<int64_t> times_ns;
   times_ns.reserve(scan.points.capacity());
   std::size_t dropped = 0;
-  for (uint32_t row = 0; row < cloud.height; ++row) {
+  // An empty row (width 0) is not visited: up to 4 G of them would take seconds.
+  for (uint32_t row = 0; cloud.width > 0 && row < cloud.height; ++row) {
     const uint8_t* row_start = cloud.data.data() + std::size_t{row} * cloud.row_step;
     for (uint32_t col = 0; col < cloud.width; ++col) {
       const uint8_t* p = row_start + std::size_t{col} * cloud.point_step;

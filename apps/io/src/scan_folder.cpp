@@ -100,8 +100,10 @@ std::unique_ptr<LogReader> OpenScanFolder(const std::string& dir, const LogReadO
   ScanFolderIndex index = IndexScanFolder(dir);
   for (const ScanFolderEntry& scan : index.scans) {
     if (!scan.has_time) {
-      throw std::runtime_error(scan.path + ": no stamp for scan index " +
-                               std::to_string(scan.index) + " in " + index.pose_file);
+      throw std::runtime_error(
+          scan.path + ": no stamp for scan index " + std::to_string(scan.index) +
+          (index.pose_file.empty() ? " (index x 0.1 s is beyond the int64 ns range)"
+                                   : " in " + index.pose_file));
     }
   }
   return std::make_unique<ScanFolderReader>(std::move(index));

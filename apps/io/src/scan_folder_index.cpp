@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -114,7 +116,9 @@ Rows ReadBalmPoses(const std::string& path) {
     for (int k = 0; k < 4; ++k) {
       char* end = nullptr;
       v[k] = std::strtod(cells[k].c_str(), &end);
-      if (end == cells[k].c_str() || *end != '\0') fail("'" + cells[k] + "' is not a number");
+      if (end == cells[k].c_str() || *end != '\0' || !std::isfinite(v[k])) {
+        fail("'" + cells[k] + "' is not a finite number");
+      }
     }
     if (row < 3) {
       T.row(row++) << v[0], v[1], v[2], v[3];
@@ -230,7 +234,9 @@ ScanFolderIndex IndexScanFolder(const std::string& dir) {
     if (k < rows.times.size()) {
       entry.has_time = true;
       entry.pose.t_ns = rows.times[k];
-    } else if (rows.times_from_period) {
+    } else if (rows.times_from_period &&
+               file.number <= std::numeric_limits<int64_t>::max() / kDefaultScanPeriodNs) {
+      // A larger index (a file name with 11+ digits) has no stamp: it would overflow int64 ns.
       entry.has_time = true;
       entry.pose.t_ns = file.number * kDefaultScanPeriodNs;
     }

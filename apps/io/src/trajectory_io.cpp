@@ -55,7 +55,8 @@ bool ParseSecondsToNs(const std::string& text, int64_t* t_ns) {
   if (text.find_first_of("eE") != std::string::npos) {
     char* end = nullptr;
     const double seconds = std::strtod(text.c_str(), &end);
-    if (end == text.c_str() || *end != '\0' || !std::isfinite(seconds)) return false;
+    // Beyond +-9.2e9 s, llround has no int64 to return (its result is unspecified).
+    if (end == text.c_str() || *end != '\0' || !(std::abs(seconds) < 9.2e9)) return false;
     *t_ns = std::llround(seconds * 1e9);
     return true;
   }

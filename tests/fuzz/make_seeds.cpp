@@ -1,0 +1,282 @@
+// Writes the fuzz targets' seed inputs with the project's own writers (and, where there is no
+// writer, in the formats' documented grammar), one folder per target:
+//   hylo_fuzz_make_seeds OUT_DIR      ->  OUT_DIR/<target>/<seed>
+// Small on purpose (a few points each): libFuzzer mutates headers and layouts, not bulk data.
+
+#include <ros/serialization.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "hylo/config/run_config.h"
+#include "hylo/io/cloud_io.h"
+#include "hylo/io/json.h"
+#include "hylo/io/pointcloud2.h"
+#include "hylo/io/ros_bridge.h"
+#include "hylo/io/trajectory_io.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace io = hylo::io;
+using io::PointTimeConvention;
+
+fs::path g_out;
+
+void Emit(const std::string& target, const std::string& name, const std::string& bytes) {
+  fs::create_directories(g_out / target);
+  std::ofstream(g_out / target / name, std::ios::binary) << bytes;
+}
+
+std::string FileBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::string Scratch(const std::string& name) { return (g_out / ("tmp_" + name)).string(); }
+
+std::string Take(const std::string& path) {
+  std::string bytes = FileBytes(path);
+  fs::remove(path);
+  return bytes;
+}
+
+template <class Message>
+std::string Serialized(const Message& msg) {
+  std::vector<uint8_t> bytes(ros::serialization::serializationLength(msg));
+  ros::serialization::OStream out(bytes.data(), static_cast<uint32_t>(bytes.size()));
+  ros::serialization::serialize(out, msg);
+  return std::string(bytes.begin(), bytes.end());
+}
+
+// --- bag messages ---------------------------------------------------------------------------
+
+hylo::LidarScan SmallScan() {
+  hylo::LidarScan scan;
+  scan.t_ns = 1'700'000'000'123'456'789;
+  scan.frame_id = "lidar";
+  for (int i = 0; i < 6; ++i) {
+    hylo::ScanPoint p;
+    p.position_lidar = Eigen::Vector3f(1.0f + i, -2.0f * i, 0.5f);
+    p.intensity = 10.0f * i;
+    p.ring = static_cast<uint16_t>(i % 4);
+    p.offset_ns = 10'000'000 * i;
+    scan.points.push_back(p);
+  }
+  scan.points[3].position_lidar.x() = std::numeric_limits<float>::quiet_NaN();
+  scan.end_t_ns = scan.t_ns + scan.points.back().offset_ns;
+  return scan;
+}
+
+// The same cloud with every field byte-swapped and is_bigendian set.
+io::PointCloud2Message BigEndian(io::PointCloud2Message cloud) {
+  for (uint32_t i = 0; i < cloud.width * cloud.height; ++i) {
+    for (const io::PointFieldInfo& f : cloud.fields) {
+      uint8_t* at = cloud.data.data() + i * cloud.point_step + f.offset;
+      std::reverse(at, at + io::PointFieldSize(f.datatype));
+    }
+  }
+  cloud.is_bigendian = true;
+  return cloud;
+}
+
+// Two rows with 4 padding bytes after each (row_step > width * point_step).
+io::PointCloud2Message Organized(const io::PointCloud2Message& flat) {
+  io::PointCloud2Message cloud = flat;
+  cloud.height = 2;
+  cloud.width = flat.width / 2;
+  cloud.row_step = cloud.width * cloud.point_step + 4;
+  cloud.data.assign(std::size_t{cloud.row_step} * 2, 0);
+  for (uint32_t r = 0; r < 2; ++r) {
+    std::memcpy(cloud.data.data() + r * cloud.row_step,
+                flat.data.data() + r * cloud.width * cloud.point_step,
+                cloud.width * cloud.point_step);
+  }
+  return cloud;
+}
+
+void PointCloud2Seeds() {
+  const PointTimeConvention layouts[] = {
+      PointTimeConvention::kVelodyne,  PointTimeConvention::kOuster, PointTimeConvention::kHesai,
+      PointTimeConvention::kRobosense, PointTimeConvention::kLivox,  PointTimeConvention::kNone};
+  // The target's first byte: 0 = auto, then the conventions in this order.
+  for (std::size_t k = 0; k < std::size(layouts); ++k) {
+    const io::PointCloud2Message cloud = io::EncodePointCloud2(SmallScan(), layouts[k]);
+    const std::string name = io::ToString(layouts[k]);
+    const std::string auto_byte(1, '\0');
+    const std::string own_byte(1, static_cast<char>(k + 1));
+    Emit("bag_pointcloud2", name + "_auto",
+         auto_byte + Serialized(io::ros_bridge::ToRos(io::PointCloud2Message(cloud))));
+    Emit("bag_pointcloud2", name,
+         own_byte + Serialized(io::ros_bridge::ToRos(io::PointCloud2Message(cloud))));
+    Emit("bag_pointcloud2", name + "_big_endian",
+         auto_byte + Serialized(io::ros_bridge::ToRos(BigEndian(cloud))));
+    Emit("bag_pointcloud2", name + "_organized",
+         auto_byte + Serialized(io::ros_bridge::ToRos(Organized(cloud))));
+  }
+}
+
+void ImuSeeds() {
+  sensor_msgs::Imu msg;
+  msg.header.stamp.fromNSec(1'700'000'000'000'000'000);
+  msg.header.frame_id = "imu";
+  msg.orientation_covariance[0] = -1.0;
+  msg.linear_acceleration.z = 9.81;
+  msg.angular_velocity.x = 0.01;
+  Emit("bag_imu", "at_rest", Serialized(msg));
+  msg.linear_acceleration.x = std::numeric_limits<double>::quiet_NaN();
+  Emit("bag_imu", "nan_accel", Serialized(msg));
+}
+
+// --- point cloud files ----------------------------------------------------------------------
+
+io::CloudFile SmallCloud(bool utm) {
+  io::CloudFile cloud;
+  const Eigen::Vector3d origin =
+      utm ? Eigen::Vector3d(500123.25, 5432109.5, 210.0) : Eigen::Vector3d::Zero();
+  for (int i = 0; i < 5; ++i) {
+    cloud.positions.push_back(origin + Eigen::Vector3d(0.1 * i, -0.2 * i, 0.05 * i * i));
+    cloud.intensity.push_back(3.0f * i);
+    cloud.normals.emplace_back(0.0f, 0.0f, 1.0f);
+    cloud.labels.push_back(i % 2);
+  }
+  return cloud;
+}
+
+void CloudSeeds() {
+  const std::pair<io::CloudEncoding, const char*> pcd_encodings[] = {
+      {io::CloudEncoding::kAscii, "ascii"},
+      {io::CloudEncoding::kBinary, "binary"},
+      {io::CloudEncoding::kBinaryCompressed, "binary_compressed"}};
+  for (const bool utm : {false, true}) {
+    const std::string suffix = utm ? "_utm" : "";
+    for (const auto& [encoding, name] : pcd_encodings) {
+      io::WriteCloud(Scratch("c.pcd"), SmallCloud(utm), encoding);
+      Emit("pcd", name + suffix, Take(Scratch("c.pcd")));
+      if (encoding == io::CloudEncoding::kBinaryCompressed) continue;
+      io::WriteCloud(Scratch("c.ply"), SmallCloud(utm), encoding);
+      Emit("ply", name + suffix, Take(Scratch("c.ply")));
+    }
+  }
+  // Big endian, an element before the vertices and faces after them (no writer makes these).
+  Emit("ply", "big_endian_with_faces",
+       "ply\nformat binary_big_endian 1.0\nelement camera 1\nproperty float f\n"
+       "element vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+       "element face 1\nproperty list uchar int vertex_indices\nend_header\n" +
+           std::string("\x3f\x80\x00\x00", 4) + std::string("\x3f\x80\x00\x00", 4) +
+           std::string("\x40\x00\x00\x00", 4) + std::string("\xc0\x40\x00\x00", 4) +
+           std::string("\x03\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00", 13));
+  io::CloudFile kitti = SmallCloud(false);
+  kitti.normals.clear();
+  kitti.labels.clear();
+  io::WriteCloud(Scratch("c.bin"), kitti);
+  Emit("kitti_bin", "five_points", Take(Scratch("c.bin")));
+}
+
+// --- trajectories, scan folders, pose guesses ----------------------------------------------
+
+std::vector<io::StampedPose> SmallTrajectory() {
+  std::vector<io::StampedPose> poses;
+  for (int i = 0; i < 3; ++i) {
+    io::StampedPose p;
+    p.t_ns = 1'630'577'758'569'490'000 + i * 100'000'000LL;
+    p.position = Eigen::Vector3d(0.5 * i, 0.1, -0.25 * i);
+    p.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.3 * i, Eigen::Vector3d::UnitZ()));
+    poses.push_back(p);
+  }
+  return poses;
+}
+
+std::string Balm(const std::vector<io::StampedPose>& poses) {
+  std::string text;
+  for (const io::StampedPose& p : poses) {
+    const Eigen::Matrix3d R = p.orientation.toRotationMatrix();
+    for (int r = 0; r < 3; ++r) {
+      text += std::to_string(R(r, 0)) + "," + std::to_string(R(r, 1)) + "," +
+              std::to_string(R(r, 2)) + "," + std::to_string(p.position[r]) + "\n";
+    }
+    text += "0,0,0," + io::FormatNsAsSeconds(p.t_ns) + "\n";
+  }
+  return text;
+}
+
+void TrajectorySeeds() {
+  const std::vector<io::StampedPose> poses = SmallTrajectory();
+  io::WriteTum(Scratch("t.tum"), poses);
+  const std::string tum = Take(Scratch("t.tum"));
+  io::WriteKitti(Scratch("k.txt"), poses, Scratch("times.txt"));
+  const std::string kitti = Take(Scratch("k.txt"));
+  const std::string times = Take(Scratch("times.txt"));
+  // The target's first byte: TUM, KITTI, KITTI + times, times.
+  Emit("trajectory", "tum", std::string(1, '\0') + tum);
+  Emit("trajectory", "kitti", std::string(1, '\1') + kitti);
+  Emit("trajectory", "kitti_times", std::string(1, '\2') + kitti + "\n%%\n" + times);
+  Emit("trajectory", "times", std::string(1, '\3') + times);
+  // The scan folder target: pose kind, scan format, stems, pose file text.
+  const std::string stems = "full20 full21 full22\n";
+  Emit("scan_folder", "none_pcd", std::string("\0\0", 2) + stems);
+  Emit("scan_folder", "balm_pcd", std::string("\1\0", 2) + stems + Balm(poses));
+  Emit("scan_folder", "tum_ply", std::string("\2\1", 2) + stems + tum);
+  Emit("scan_folder", "kitti_times_bin", std::string("\3\2", 2) + stems + kitti + "\n%%\n" + times);
+  Emit("scan_folder", "times_bin", std::string("\4\2", 2) + "000000 000001 000002\n" + times);
+  Emit("scan_folder", "dot_tum_unnumbered", std::string("\5\0", 2) + "a b c\n" + tum);
+  Emit("scan_folder", "mixed", std::string("\0\3", 2) + stems);
+  Emit("pose_guess", "xyz_rpy", std::string(1, '\0') + "1 2 3 0 0 90");
+  Emit("pose_guess", "bracketed", std::string(1, '\0') + "[1.5, -2, 0.25; 10, -5, 179.9]");
+  Emit("pose_guess", "matrix", std::string(1, '\0') + "0 -1 0 1\n1 0 0 2\n0 0 1 3\n0 0 0 1");
+  std::string numbers(1, '\1');
+  for (const double v : {1.0, 2.0, 3.0, 0.0, 0.0, 90.0}) {
+    numbers.append(reinterpret_cast<const char*>(&v), sizeof(v));
+  }
+  Emit("pose_guess", "numbers", numbers);
+}
+
+// --- configuration and JSON -----------------------------------------------------------------
+
+void ConfigAndJsonSeeds() {
+  hylo::config::RunConfig config;
+  Emit("run_config", "defaults", hylo::config::ToYaml(config));
+  config = hylo::config::ParseRunConfig(
+      "backend: sliding_window\nimu: none\nlidar: {topic: /velodyne_points, time_convention: "
+      "velodyne}\nlocalization: {initial_guess: \"1 2 3 0 0 45\"}\n",
+      "seed");
+  Emit("run_config", "sliding_window_no_imu", hylo::config::ToYaml(config));
+  io::Json summary;
+  summary["command"] = "map";
+  summary["ate"] = {{"rmse_m", 0.0123}, {"max_m", std::numeric_limits<double>::quiet_NaN()}};
+  summary["scans"] = {1, 2, 3};
+  summary["name"] = "µ-site \"A\"";
+  summary["ok"] = true;
+  io::WriteJsonFile(Scratch("s.json"), summary);
+  Emit("json", "summary", Take(Scratch("s.json")));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: %s OUT_DIR\n", argv[0]);
+    return 2;
+  }
+  g_out = argv[1];
+  for (const char* target : {"bag_pointcloud2", "bag_imu", "pcd", "ply", "kitti_bin", "trajectory",
+                             "scan_folder", "pose_guess", "run_config", "json"}) {
+    fs::remove_all(g_out / target);  // seeds only: a rerun leaves no stale files
+  }
+  fs::create_directories(g_out);
+  PointCloud2Seeds();
+  ImuSeeds();
+  CloudSeeds();
+  TrajectorySeeds();
+  ConfigAndJsonSeeds();
+  std::printf("seeds written to %s\n", g_out.string().c_str());
+  return 0;
+}
