@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "bag_open.h"
 #include "hylo/io/ros_bridge.h"
 
 namespace hylo::io {
@@ -24,16 +23,21 @@ struct BagWriter::Impl {
     try {
       bag.write(topic, ros_bridge::ToRosTime(std::max<int64_t>(receive_t_ns, 1)), msg);
     } catch (const rosbag::BagException& e) {
-      throw std::runtime_error("bag '" + path + "': cannot write to " + topic + " (" +
-                               e.what() + ")");
+      throw std::runtime_error("bag '" + path + "': cannot write to " + topic + " (" + e.what() +
+                               ")");
     }
   }
 };
 
-BagWriter::BagWriter(const std::string& path) : impl_(std::make_unique<Impl>()) {
+BagWriter::BagWriter(const std::string& path, BagCompression compression)
+    : impl_(std::make_unique<Impl>()) {
   impl_->path = path;
   try {
     impl_->bag.open(path, rosbag::bagmode::Write);
+    impl_->bag.setCompression(compression == BagCompression::kBz2 ? rosbag::compression::BZ2
+                              : compression == BagCompression::kLz4
+                                  ? rosbag::compression::LZ4
+                                  : rosbag::compression::Uncompressed);
   } catch (const rosbag::BagException& e) {
     throw std::runtime_error("bag '" + path + "': cannot be created (" + e.what() + ")");
   }

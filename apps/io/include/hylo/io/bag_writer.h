@@ -16,10 +16,14 @@ namespace hylo::io {
 /// (a scan's is its end time, when a driver publishes it), so readers get receive order.
 /// rosbag refuses a receive time of 0: a message stamped 0 is filed at 1 ns (its header
 /// keeps 0). Negative stamps throw std::invalid_argument. Not thread-safe.
+/// How chunks are stored (rosbag's choices): none (what `rosbag record` writes by default),
+/// bz2 or lz4.
+enum class BagCompression { kNone, kBz2, kLz4 };
+
 class BagWriter {
  public:
   /// Creates (overwrites) `path`; throws std::runtime_error naming it if it cannot.
-  explicit BagWriter(const std::string& path);
+  explicit BagWriter(const std::string& path, BagCompression compression = BagCompression::kNone);
   ~BagWriter();  ///< closes the bag if Close() was not called (errors then swallowed)
   BagWriter(const BagWriter&) = delete;
   BagWriter& operator=(const BagWriter&) = delete;
@@ -32,8 +36,7 @@ class BagWriter {
   void WriteScan(const std::string& topic, const LidarScan& scan, PointTimeConvention layout,
                  const std::string& frame_id);
   /// Any cloud, as given (tests of odd layouts; converters). Receive time `receive_t_ns`.
-  void WriteCloud(const std::string& topic, const PointCloud2Message& cloud,
-                  int64_t receive_t_ns);
+  void WriteCloud(const std::string& topic, const PointCloud2Message& cloud, int64_t receive_t_ns);
   /// Writes the index and closes the file; further writes throw std::logic_error.
   /// Throws std::runtime_error naming the file on an I/O error.
   void Close();
