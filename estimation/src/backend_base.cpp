@@ -10,7 +10,7 @@ namespace hylo::estimation {
 BackendBase::BackendBase(const EstimatorOptions& options, const ImuOptions& imu)
     : options_(options),
       imu_options_(imu),
-      imu_(imu.enabled),
+      imu_(imu.enabled, imu.GapNs()),
       robust_(options.robust_registration) {
   std::string why;
   if (!options_.IsValid(&why)) throw InternalError("invalid options: " + why);

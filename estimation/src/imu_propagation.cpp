@@ -57,6 +57,16 @@ StateCovariance PropagationNoise(const ImuNoise& noise, const ImuInterval& in) {
   set(kVelocity, noise.accel_noise_density);
   set(kGyroBias, noise.gyro_bias_random_walk);
   set(kAccelBias, noise.accel_bias_random_walk);
+  // Inside an IMU gap: an unknown constant error δω, δa over dt (imu_propagation.h), whose
+  // position and velocity parts are correlated through δp = ½ δa dt², δv = δa dt.
+  const double sg2 = in.gap_gyro_sigma_radps * in.gap_gyro_sigma_radps;
+  const double sa2 = in.gap_accel_sigma_mps2 * in.gap_accel_sigma_mps2;
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  Q.block<3, 3>(kRotation, kRotation) += sg2 * dt * dt * I;
+  Q.block<3, 3>(kVelocity, kVelocity) += sa2 * dt * dt * I;
+  Q.block<3, 3>(kPosition, kPosition) += 0.25 * sa2 * dt * dt * dt * dt * I;
+  Q.block<3, 3>(kPosition, kVelocity) += 0.5 * sa2 * dt * dt * dt * I;
+  Q.block<3, 3>(kVelocity, kPosition) += 0.5 * sa2 * dt * dt * dt * I;
   return Q;
 }
 
@@ -77,8 +87,26 @@ ImuSample InterpolateImu(const std::vector<ImuSample>& samples, int64_t t_ns) {
   return out;
 }
 
+namespace {
+
+/// True when [a_ns, b_ns] lies between samples farther apart than `gap_ns` (or past the
+/// samples by more than that).
+bool InGap(const std::vector<ImuSample>& samples, int64_t a_ns, int64_t b_ns, int64_t gap_ns) {
+  const auto after = std::lower_bound(
+      samples.begin(), samples.end(), b_ns,
+      [](const ImuSample& s, int64_t t) { return s.t_ns < t; });  // first at or after b
+  const auto before =
+      std::upper_bound(samples.begin(), samples.end(), a_ns,
+                       [](int64_t t, const ImuSample& s) { return t < s.t_ns; });  // first after a
+  const int64_t lo = before == samples.begin() ? a_ns : (before - 1)->t_ns;
+  const int64_t hi = after == samples.end() ? b_ns : after->t_ns;
+  return hi - lo > gap_ns;
+}
+
+}  // namespace
+
 std::vector<ImuInterval> MakeIntervals(const std::vector<ImuSample>& samples, int64_t t0_ns,
-                                       int64_t t1_ns) {
+                                       int64_t t1_ns, const ImuGapModel* gap) {
   std::vector<ImuInterval> intervals;
   if (samples.empty() || t1_ns <= t0_ns) return intervals;
   std::vector<int64_t> knots{t0_ns};
@@ -93,6 +121,10 @@ std::vector<ImuInterval> MakeIntervals(const std::vector<ImuSample>& samples, in
     in.dt_s = NanosToSeconds(knots[i] - knots[i - 1]);
     in.gyro_imu = 0.5 * (prev.gyro_imu + cur.gyro_imu);
     in.accel_imu = 0.5 * (prev.accel_imu + cur.accel_imu);
+    if (gap != nullptr && InGap(samples, knots[i - 1], knots[i], gap->gap_ns)) {
+      in.gap_accel_sigma_mps2 = gap->accel_sigma_mps2;
+      in.gap_gyro_sigma_radps = gap->gyro_sigma_radps;
+    }
     intervals.push_back(in);
     prev = cur;
   }

@@ -22,6 +22,20 @@ struct ImuInterval {
   double dt_s = 0.0;
   Eigen::Vector3d gyro_imu = Eigen::Vector3d::Zero();   ///< rad/s
   Eigen::Vector3d accel_imu = Eigen::Vector3d::Zero();  ///< m/s²
+  /// > 0 when the interval lies in a gap of the IMU stream, its measurement interpolated
+  /// across missing samples: the spread (1 sigma) of what those samples would have read about
+  /// the interpolation, taken as an unknown constant error over the interval, which the
+  /// propagation and the preintegration add as uncertainty (δθ = δω dt, δv = δa dt,
+  /// δp = ½ δa dt²) so that the lidar, not the guess, decides the state after a dropout.
+  double gap_accel_sigma_mps2 = 0.0;  ///< m/s²
+  double gap_gyro_sigma_radps = 0.0;  ///< rad/s
+};
+
+/// How MakeIntervals marks intervals inside an IMU gap (ImuBuffer fills it in).
+struct ImuGapModel {
+  int64_t gap_ns = 0;             ///< consecutive samples farther apart bound a gap, ns (> 0)
+  double accel_sigma_mps2 = 0.0;  ///< spread of the recent specific force, m/s²
+  double gyro_sigma_radps = 0.0;  ///< spread of the recent angular rate, rad/s
 };
 
 /// Nominal state after `interval` (t_ns advanced by dt).
@@ -30,7 +44,8 @@ NavState PropagateNominal(const NavState& x, const ImuInterval& interval);
 /// F = ∂(x' ⊟ x̂')/∂(x ⊟ x̂) at x (24×24).
 StateCovariance PropagationJacobian(const NavState& x, const ImuInterval& interval);
 
-/// Discrete process noise added over `interval` (white noise and bias random walks).
+/// Discrete process noise added over `interval` (white noise and bias random walks, and the
+/// gap error of an interval inside an IMU gap).
 StateCovariance PropagationNoise(const ImuNoise& noise, const ImuInterval& interval);
 
 /// The measurement of `samples` (sorted by time) at `t_ns`, linearly interpolated; held
@@ -38,9 +53,11 @@ StateCovariance PropagationNoise(const ImuNoise& noise, const ImuInterval& inter
 ImuSample InterpolateImu(const std::vector<ImuSample>& samples, int64_t t_ns);
 
 /// Splits [t0_ns, t1_ns] at the sample stamps inside it; each interval's measurement is the
-/// mean of the interpolated measurements at its two ends (trapezoidal rule).
+/// mean of the interpolated measurements at its two ends (trapezoidal rule). With `gap`, an
+/// interval whose nearest samples on either side lie farther apart than gap->gap_ns carries
+/// the gap's spreads.
 std::vector<ImuInterval> MakeIntervals(const std::vector<ImuSample>& samples, int64_t t0_ns,
-                                       int64_t t1_ns);
+                                       int64_t t1_ns, const ImuGapModel* gap = nullptr);
 
 /// The nominal state `x` carried to `t_ns` (Estimator::PredictAt of every back-end): through
 /// the buffered `imu` samples, or without IMU at constant velocity (`v_map_imu` and the body
