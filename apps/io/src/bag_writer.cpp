@@ -52,7 +52,7 @@ BagWriter::~BagWriter() {
 }
 
 void BagWriter::WriteImu(const std::string& topic, const ImuSample& imu,
-                         const std::string& frame_id) {
+                         const std::string& frame_id, int64_t receive_t_ns) {
   sensor_msgs::Imu msg;
   msg.header.stamp = ros_bridge::ToRosTime(imu.t_ns);
   msg.header.frame_id = frame_id;
@@ -63,7 +63,7 @@ void BagWriter::WriteImu(const std::string& topic, const ImuSample& imu,
   msg.angular_velocity.x = imu.gyro_imu.x();
   msg.angular_velocity.y = imu.gyro_imu.y();
   msg.angular_velocity.z = imu.gyro_imu.z();
-  impl_->Write(topic, imu.t_ns, msg);
+  impl_->Write(topic, receive_t_ns >= 0 ? receive_t_ns : imu.t_ns, msg);
 }
 
 void BagWriter::WriteScan(const std::string& topic, const LidarScan& scan,

@@ -30,7 +30,9 @@ class BagWriter {
 
   /// sensor_msgs/Imu: header.stamp = t_ns, linear_acceleration = accel_imu (m/s^2),
   /// angular_velocity = gyro_imu (rad/s), orientation unknown (orientation_covariance[0] = -1).
-  void WriteImu(const std::string& topic, const ImuSample& imu, const std::string& frame_id);
+  /// Receive time = t_ns, or `receive_t_ns` when >= 0 (a late message, as tests need them).
+  void WriteImu(const std::string& topic, const ImuSample& imu, const std::string& frame_id,
+                int64_t receive_t_ns = -1);
   /// sensor_msgs/PointCloud2 in the field layout of `layout`'s driver (EncodePointCloud2);
   /// `frame_id` replaces scan.frame_id. Receive time = scan.end_t_ns.
   void WriteScan(const std::string& topic, const LidarScan& scan, PointTimeConvention layout,
