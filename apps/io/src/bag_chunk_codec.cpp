@@ -24,6 +24,38 @@ bool Grow(std::size_t produced, uint32_t size, std::size_t n, std::vector<uint8_
   return true;
 }
 
+/// What one call of a streaming decoder did.
+enum class Step { kEnd, kOutputFull, kInputDone, kError };
+
+/// Runs `decode(out, room, &produced, &code)` into `out` until the stream ends, the data is
+/// corrupt or the input runs out. A cut chunk (`complete` false) keeps what came out before.
+template <class Decode>
+bool Drain(const std::string& codec, uint32_t size, std::size_t n, bool complete,
+           std::vector<uint8_t>* out, std::string* why, Decode decode) {
+  std::size_t produced = 0;
+  bool ok = true;
+  while (true) {
+    if (produced == out->size() && !Grow(produced, size, n, out)) {
+      *why = codec + ": more data than the chunk announced";
+      ok = false;
+      break;
+    }
+    int code = 0;
+    const Step step = decode(out->data() + produced, out->size() - produced, &produced, &code);
+    if (step == Step::kEnd) break;
+    if (step == Step::kOutputFull) continue;
+    if (step == Step::kError) {
+      *why = codec + ": corrupt data (code " + std::to_string(code) + ")";
+    } else if (complete) {
+      *why = codec + ": the chunk ends before its compressed stream";
+    }
+    ok = !complete;
+    break;
+  }
+  out->resize(produced);
+  return ok;
+}
+
 bool Bz2(const uint8_t* in, std::size_t n, uint32_t size, bool complete, std::vector<uint8_t>* out,
          std::string* why) {
   bz_stream s;
@@ -34,32 +66,18 @@ bool Bz2(const uint8_t* in, std::size_t n, uint32_t size, bool complete, std::ve
   }
   s.next_in = const_cast<char*>(reinterpret_cast<const char*>(in));
   s.avail_in = static_cast<unsigned int>(n);
-  std::size_t produced = 0;
-  bool ok = true;
-  while (true) {
-    if (produced == out->size() && !Grow(produced, size, n, out)) {
-      *why = "bz2: more data than the chunk announced";
-      ok = false;
-      break;
-    }
-    s.next_out = reinterpret_cast<char*>(out->data() + produced);
-    s.avail_out = static_cast<unsigned int>(out->size() - produced);
-    const int rc = BZ2_bzDecompress(&s);
-    produced = out->size() - s.avail_out;
-    if (rc == BZ_STREAM_END) break;
-    if (rc != BZ_OK) {
-      *why = "bz2: corrupt data (code " + std::to_string(rc) + ")";
-      ok = !complete;  // a cut chunk keeps what came out before the damage
-      break;
-    }
-    if (s.avail_in == 0 && s.avail_out > 0) {  // the input ran out before the stream's end
-      if (complete) *why = "bz2: the chunk ends before its compressed stream";
-      ok = !complete;
-      break;
-    }
-  }
+  const bool ok = Drain("bz2", size, n, complete, out, why,
+                        [&](uint8_t* next, std::size_t room, std::size_t* produced, int* code) {
+                          s.next_out = reinterpret_cast<char*>(next);
+                          s.avail_out = static_cast<unsigned int>(room);
+                          *code = BZ2_bzDecompress(&s);
+                          *produced += room - s.avail_out;
+                          if (*code == BZ_STREAM_END) return Step::kEnd;
+                          if (*code != BZ_OK) return Step::kError;
+                          if (s.avail_out == 0) return Step::kOutputFull;
+                          return s.avail_in == 0 ? Step::kInputDone : Step::kOutputFull;
+                        });
   BZ2_bzDecompressEnd(&s);
-  out->resize(produced);
   return ok;
 }
 
@@ -73,33 +91,20 @@ bool Lz4(const uint8_t* in, std::size_t n, uint32_t size, bool complete, std::ve
   }
   s.input_next = const_cast<char*>(reinterpret_cast<const char*>(in));
   s.input_left = static_cast<int>(n);
-  std::size_t produced = 0;
-  bool ok = true;
-  while (true) {
-    if (produced == out->size() && !Grow(produced, size, n, out)) {
-      *why = "lz4: more data than the chunk announced";
-      ok = false;
-      break;
-    }
-    s.output_next = reinterpret_cast<char*>(out->data() + produced);
-    s.output_left = static_cast<int>(out->size() - produced);
-    const int rc = roslz4_decompress(&s);
-    produced = out->size() - static_cast<std::size_t>(s.output_left);
-    if (rc == ROSLZ4_STREAM_END) break;
-    if (rc == ROSLZ4_OUTPUT_SMALL || (rc == ROSLZ4_OK && s.output_left == 0)) continue;
-    if (rc != ROSLZ4_OK) {
-      *why = "lz4: corrupt data (code " + std::to_string(rc) + ")";
-      ok = !complete;
-      break;
-    }
-    if (s.input_left == 0) {
-      if (complete) *why = "lz4: the chunk ends before its compressed stream";
-      ok = !complete;
-      break;
-    }
-  }
+  const bool ok = Drain("lz4", size, n, complete, out, why,
+                        [&](uint8_t* next, std::size_t room, std::size_t* produced, int* code) {
+                          s.output_next = reinterpret_cast<char*>(next);
+                          s.output_left = static_cast<int>(room);
+                          *code = roslz4_decompress(&s);
+                          *produced += room - static_cast<std::size_t>(s.output_left);
+                          if (*code == ROSLZ4_STREAM_END) return Step::kEnd;
+                          if (*code == ROSLZ4_OUTPUT_SMALL || s.output_left == 0) {
+                            return Step::kOutputFull;
+                          }
+                          if (*code != ROSLZ4_OK) return Step::kError;
+                          return s.input_left == 0 ? Step::kInputDone : Step::kOutputFull;
+                        });
   roslz4_decompressEnd(&s);
-  out->resize(produced);
   return ok;
 }
 
