@@ -44,8 +44,9 @@ void BackendBase::LearnFromUpdate(const NavState& predicted, const NavState& upd
 }
 
 NavState BackendBase::PredictAt(int64_t t_ns) const {
+  const ImuGapModel gap = imu_.GapModel();
   return PredictNominal(state_, imu_.samples(), imu_options_.enabled,
-                        constant_velocity_.omega_imu(), t_ns);
+                        constant_velocity_.omega_imu(), t_ns, &gap);
 }
 
 void BackendBase::TakeFinalized(std::vector<NavState>* states) {

@@ -45,11 +45,20 @@ void ImuBuffer::DropBefore(int64_t t_ns) {
   if (first_after != samples_.begin()) samples_.erase(samples_.begin(), first_after - 1);
 }
 
-std::vector<ImuInterval> ImuBuffer::Intervals(int64_t t0_ns, int64_t t1_ns) const {
+ImuGapModel ImuBuffer::GapModel() const {
   ImuGapModel gap;
   gap.gap_ns = gap_ns_;
   gap.accel_sigma_mps2 = std::sqrt(accel_.variance);
   gap.gyro_sigma_radps = std::sqrt(gyro_.variance);
+  // Before two close samples there is no mean yet: the last sample is the best guess.
+  const bool have_mean = accel_.started || samples_.empty();
+  gap.accel_mean_imu = have_mean ? accel_.mean : samples_.back().accel_imu;
+  gap.gyro_mean_imu = have_mean ? gyro_.mean : samples_.back().gyro_imu;
+  return gap;
+}
+
+std::vector<ImuInterval> ImuBuffer::Intervals(int64_t t0_ns, int64_t t1_ns) const {
+  const ImuGapModel gap = GapModel();
   return MakeIntervals(samples_, t0_ns, t1_ns, &gap);
 }
 

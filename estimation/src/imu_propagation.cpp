@@ -1,6 +1,8 @@
 #include "hylo/estimation/imu_propagation.h"
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 
 #include "hylo/common/check.h"
 #include "hylo/common/time.h"
@@ -89,9 +91,10 @@ ImuSample InterpolateImu(const std::vector<ImuSample>& samples, int64_t t_ns) {
 
 namespace {
 
-/// True when [a_ns, b_ns] lies between samples farther apart than `gap_ns` (or past the
-/// samples by more than that).
-bool InGap(const std::vector<ImuSample>& samples, int64_t a_ns, int64_t b_ns, int64_t gap_ns) {
+/// The last sample's stamp before [a_ns, b_ns] when the interval lies between samples farther
+/// apart than `gap_ns` (or that far past the last sample); nullopt outside a gap.
+std::optional<int64_t> GapStart(const std::vector<ImuSample>& samples, int64_t a_ns, int64_t b_ns,
+                                int64_t gap_ns) {
   const auto after = std::lower_bound(
       samples.begin(), samples.end(), b_ns,
       [](const ImuSample& s, int64_t t) { return s.t_ns < t; });  // first at or after b
@@ -100,7 +103,8 @@ bool InGap(const std::vector<ImuSample>& samples, int64_t a_ns, int64_t b_ns, in
                        [](int64_t t, const ImuSample& s) { return t < s.t_ns; });  // first after a
   const int64_t lo = before == samples.begin() ? a_ns : (before - 1)->t_ns;
   const int64_t hi = after == samples.end() ? b_ns : after->t_ns;
-  return hi - lo > gap_ns;
+  if (hi - lo <= gap_ns) return std::nullopt;
+  return lo;
 }
 
 }  // namespace
@@ -114,16 +118,31 @@ std::vector<ImuInterval> MakeIntervals(const std::vector<ImuSample>& samples, in
     if (s.t_ns > t0_ns && s.t_ns < t1_ns) knots.push_back(s.t_ns);
   }
   knots.push_back(t1_ns);
-  ImuSample prev = InterpolateImu(samples, knots.front());
+  const auto measure = [&](int64_t t) {
+    if (gap == nullptr || t <= samples.back().t_ns) return InterpolateImu(samples, t);
+    ImuSample mean;
+    mean.t_ns = t;
+    mean.accel_imu = gap->accel_mean_imu;
+    mean.gyro_imu = gap->gyro_mean_imu;
+    return mean;
+  };
+  ImuSample prev = measure(knots.front());
   for (std::size_t i = 1; i < knots.size(); ++i) {
-    const ImuSample cur = InterpolateImu(samples, knots[i]);
+    const ImuSample cur = measure(knots[i]);
     ImuInterval in;
     in.dt_s = NanosToSeconds(knots[i] - knots[i - 1]);
     in.gyro_imu = 0.5 * (prev.gyro_imu + cur.gyro_imu);
     in.accel_imu = 0.5 * (prev.accel_imu + cur.accel_imu);
-    if (gap != nullptr && InGap(samples, knots[i - 1], knots[i], gap->gap_ns)) {
-      in.gap_accel_sigma_mps2 = gap->accel_sigma_mps2;
-      in.gap_gyro_sigma_radps = gap->gyro_sigma_radps;
+    const std::optional<int64_t> gap_start =
+        gap != nullptr ? GapStart(samples, knots[i - 1], knots[i], gap->gap_ns) : std::nullopt;
+    if (gap_start) {
+      // The error is one constant over the whole gap: its effect on the velocity (and
+      // rotation) grows with the time e already spent in the gap, as σ (e + dt) in all, so this
+      // interval adds σ² ((e + dt)² − e²) = σ² dt² (1 + 2 e / dt).
+      const double elapsed_s = NanosToSeconds(knots[i - 1] - *gap_start);
+      const double growth = std::sqrt(1.0 + 2.0 * elapsed_s / in.dt_s);
+      in.gap_accel_sigma_mps2 = growth * gap->accel_sigma_mps2;
+      in.gap_gyro_sigma_radps = growth * gap->gyro_sigma_radps;
     }
     intervals.push_back(in);
     prev = cur;
@@ -132,7 +151,7 @@ std::vector<ImuInterval> MakeIntervals(const std::vector<ImuSample>& samples, in
 }
 
 NavState PredictNominal(const NavState& x0, const std::vector<ImuSample>& imu, bool use_imu,
-                        const Eigen::Vector3d& omega_cv_imu, int64_t t_ns) {
+                        const Eigen::Vector3d& omega_cv_imu, int64_t t_ns, const ImuGapModel* gap) {
   NavState x = x0;
   if (t_ns <= x0.t_ns) return x;
   if (!use_imu) {
@@ -140,7 +159,9 @@ NavState PredictNominal(const NavState& x0, const std::vector<ImuSample>& imu, b
     x.R_map_imu = x.R_map_imu * lie::SO3d::Exp(omega_cv_imu * dt);
     x.p_map_imu += x.v_map_imu * dt;
   } else if (!imu.empty()) {
-    for (const ImuInterval& in : MakeIntervals(imu, x0.t_ns, t_ns)) x = PropagateNominal(x, in);
+    for (const ImuInterval& in : MakeIntervals(imu, x0.t_ns, t_ns, gap)) {
+      x = PropagateNominal(x, in);
+    }
   }
   x.t_ns = t_ns;
   return x;

@@ -86,6 +86,7 @@ io::Json PipelineCountersJson(const estimation::PipelineCounters& c) {
   j["queue"]["imu_gaps"] = c.queue.imu_gaps;
   j["queue"]["longest_imu_gap_s"] = NanosToSeconds(c.queue.longest_imu_gap_ns);
   j["queue"]["imu_gap_total_s"] = NanosToSeconds(c.queue.imu_gap_total_ns);
+  j["queue"]["scans_past_imu"] = c.queue.scans_past_imu;
   return j;
 }
 
@@ -117,6 +118,7 @@ std::string ImuFaultsLine(const estimation::QueueCounters& q, std::size_t unread
   add(q.imu_stale, "stamps going backwards dropped");
   add(q.imu_non_finite + unread_non_finite, "NaN/inf samples dropped");
   add(q.imu_saturated, "clipped (full-scale) samples dropped");
+  add(q.scans_past_imu, "scans registered while the IMU was silent");
   return line;
 }
 

@@ -26,8 +26,10 @@ class ImuBuffer {
   /// is interpolated from it.
   void DropBefore(int64_t t_ns);
 
-  /// MakeIntervals over the buffered samples, intervals inside a gap carrying the spread of
-  /// the signal over the last seconds before it (ImuInterval).
+  /// The gap model of the signal over the last seconds (spread and mean, ImuGapModel).
+  ImuGapModel GapModel() const;
+  /// MakeIntervals over the buffered samples with GapModel(): intervals inside a gap carry the
+  /// spread, times after the last sample read the mean.
   std::vector<ImuInterval> Intervals(int64_t t0_ns, int64_t t1_ns) const;
 
   const std::vector<ImuSample>& samples() const { return samples_; }

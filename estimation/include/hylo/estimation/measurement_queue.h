@@ -18,8 +18,12 @@ namespace hylo::estimation {
 struct MeasurementQueueOptions {
   bool use_imu = true;              ///< false: scans are released without waiting for IMU
   int64_t imu_gap_ns = 50'000'000;  ///< consecutive IMU stamps farther apart are a gap, ns
-  double accel_range_mps2 = 0.0;    ///< |accel| >= this on any axis: clipped, dropped; 0 = off
-  double gyro_range_radps = 0.0;    ///< |gyro| >= this on any axis: clipped, dropped; 0 = off
+  /// How long scans wait for an IMU that has gone silent, ns: a dropout up to this long is
+  /// bridged with the samples on both sides of it; past it the IMU is taken as stopped and the
+  /// lidar carries the estimate on (rather than every scan being held until it comes back).
+  int64_t max_imu_wait_ns = 1'000'000'000;
+  double accel_range_mps2 = 0.0;  ///< |accel| >= this on any axis: clipped, dropped; 0 = off
+  double gyro_range_radps = 0.0;  ///< |gyro| >= this on any axis: clipped, dropped; 0 = off
   bool IsValid(std::string* why) const;
 };
 
@@ -33,12 +37,8 @@ struct QueueCounters {
   std::size_t imu_saturated = 0;    ///< a value at the sensor's full-scale range
   std::size_t imu_gaps = 0;         ///< intervals longer than imu_gap_ns
   int64_t longest_imu_gap_ns = 0;
-  int64_t imu_gap_total_ns = 0;  ///< time covered by the gaps
-
-  /// IMU samples dropped for any reason.
-  std::size_t imu_dropped() const {
-    return imu_duplicates + imu_stale + imu_non_finite + imu_saturated;
-  }
+  int64_t imu_gap_total_ns = 0;    ///< time covered by the gaps
+  std::size_t scans_past_imu = 0;  ///< scans released while the IMU had stopped (see Pop)
 };
 
 /// One scan and the IMU samples up to (and including) the first one at or after its end that
@@ -55,8 +55,10 @@ class MeasurementQueue {
   void AddImu(const ImuSample& sample);
   void AddScan(LidarScan scan);
 
-  /// The next scan whose end is covered by IMU (any scan without IMU). With `flush`, also
-  /// IMU-less tails at the end of a log are released (their IMU may stop before the end).
+  /// The next scan whose end is covered by IMU (any scan without IMU). A scan is also released
+  /// without that cover when the IMU has stopped: a later scan started more than
+  /// max_imu_wait_ns after the newest IMU sample. With `flush`, also IMU-less tails at the end
+  /// of a log are released.
   bool Pop(MeasurementGroup* group, bool flush = false);
 
   /// IMU samples not yet handed out, with stamps <= t_ns, removed from the queue (used
