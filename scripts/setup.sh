@@ -9,6 +9,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libnanoflann-dev
   nlohmann-json3-dev libpng-dev liblzf-dev
   librosbag-storage-dev libroscpp-dev libroscpp-core-dev
+  libbz2-dev libroslz4-dev  # chunks of bags read without their index (both come with rosbag)
   libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libstd-msgs-dev
   # ROS1 node (apps/ros) and its integration test: tf2_ros, std_srvs; roscore + rosbag play
   libtf2-ros-dev libstd-srvs-dev ros-core

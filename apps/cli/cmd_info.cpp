@@ -9,7 +9,9 @@
 #include "commands.h"
 #include "hylo/common/time.h"
 #include "hylo/io/bag_reader.h"
+#include "hylo/io/log_reader.h"
 #include "hylo/io/scan_folder.h"
+#include "hylo/run/run_log.h"
 
 namespace hylo::cli {
 namespace {
@@ -33,6 +35,11 @@ io::Json DescribeBagToTerminal(const std::string& path) {
   json["path"] = path;
   json["message_count"] = bag.message_count;
   json["duration_s"] = bag.duration_s;
+  if (bag.recovery) {
+    // A recording that was killed: what a run would use of it.
+    std::printf("  damaged: %s\n", bag.recovery->Summary().c_str());
+    json["recovery"] = run::LogRecoveryJson(*bag.recovery);
+  }
   io::Json topics = io::Json::array();
   for (const auto& t : bag.topics) {
     std::printf("  %-28s %-26s %7zu msgs  %8.2f Hz  %.3f .. %.3f s\n", t.name.c_str(),

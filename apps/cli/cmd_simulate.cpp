@@ -1,4 +1,5 @@
-// `hylo simulate --out DIR [--seed N] [--session a|b|both] [--duration S] [--lidar M]`:
+// `hylo simulate --out DIR [--seed N] [--session a|b|both] [--duration S] [--lidar M]
+// [--lidar-time-offset S]`:
 // the substation simulator with ground truth (ROS1 bags, TUM truth, manifests, reference
 // cloud, slope grid). Prints the simulation speed of each session.
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <string>
 
 #include "commands.h"
+#include "hylo/common/time.h"
 #include "hylo/io/progress.h"
 #include "hylo/sim_io/session_writer.h"
 
@@ -17,8 +19,9 @@ namespace {
 struct SimulateArgs {
   std::string out_dir, session = "both", lidar = "vlp16", json_path;
   uint64_t seed = 1;
-  double duration_s = 0.0;  // 0 = the defaults per session
-  double column_deg = 0.0;  // 0 = the default
+  double duration_s = 0.0;           // 0 = the defaults per session
+  double column_deg = 0.0;           // 0 = the default
+  double lidar_time_offset_s = 0.0;  // t_imu = t_lidar + offset (lidar.time_offset_s)
   bool skip_site = false;
   sim::SiteOutputOptions site_output;
 };
@@ -42,6 +45,9 @@ void Run(const SimulateArgs& args) {
   options.seed = args.seed;
   if (args.duration_s > 0.0) options.duration_a_s = options.duration_b_s = args.duration_s;
   if (args.column_deg > 0.0) options.lidar.column_deg = args.column_deg;
+  // The simulator's IMU clock is true time; its lidar option is the lidar clock minus true
+  // time, the opposite sign of the run configuration's t_imu = t_lidar + offset.
+  options.lidar.time_offset_ns = -SecondsToNanos(args.lidar_time_offset_s);
   if (!sim::ParseLidarModel(args.lidar, &options.lidar.model)) {
     throw std::runtime_error("--lidar: unknown model '" + args.lidar + "' (vlp16, rs16)");
   }
@@ -99,6 +105,10 @@ void AddSimulateCommand(CLI::App& root) {
   cmd->add_option("--lidar", args.lidar, "beam table: vlp16 or rs16");
   cmd->add_option("--column-deg", args.column_deg, "azimuth step (default 0.2 deg)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--lidar-time-offset", args.lidar_time_offset_s,
+                  "lidar clock behind the IMU's by S seconds: t_imu = t_lidar + S, corrected by "
+                  "lidar.time_offset_s: S (default 0)")
+      ->check(CLI::Range(-1.0, 1.0));
   cmd->add_option("--reference-spacing", args.site_output.reference_spacing_m,
                   "object sampling of the reference cloud, m");
   cmd->add_flag("--no-site", args.skip_site, "skip the reference cloud and slope grid");

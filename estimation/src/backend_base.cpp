@@ -10,7 +10,7 @@ namespace hylo::estimation {
 BackendBase::BackendBase(const EstimatorOptions& options, const ImuOptions& imu)
     : options_(options),
       imu_options_(imu),
-      imu_(imu.enabled),
+      imu_(imu.enabled, imu.GapNs()),
       robust_(options.robust_registration) {
   std::string why;
   if (!options_.IsValid(&why)) throw InternalError("invalid options: " + why);
@@ -44,8 +44,9 @@ void BackendBase::LearnFromUpdate(const NavState& predicted, const NavState& upd
 }
 
 NavState BackendBase::PredictAt(int64_t t_ns) const {
+  const ImuGapModel gap = imu_.GapModel();
   return PredictNominal(state_, imu_.samples(), imu_options_.enabled,
-                        constant_velocity_.omega_imu(), t_ns);
+                        constant_velocity_.omega_imu(), t_ns, &gap);
 }
 
 void BackendBase::TakeFinalized(std::vector<NavState>* states) {

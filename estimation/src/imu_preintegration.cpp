@@ -39,8 +39,13 @@ void ImuPreintegration::Integrate(const ImuInterval& in) {
   B.block<3, 3>(kP, 3) = 0.5 * dR * dt;
   B.block<3, 3>(kV, 3) = dR;
   Eigen::Matrix<double, 6, 1> q;
-  q << Eigen::Vector3d::Constant(noise_.gyro_noise_density * noise_.gyro_noise_density * dt),
-      Eigen::Vector3d::Constant(noise_.accel_noise_density * noise_.accel_noise_density * dt);
+  // Inside an IMU gap, an unknown constant error of variance σ² over dt adds σ² dt² (its
+  // integral is the error times dt), through the same map B.
+  const double sg = in.gap_gyro_sigma_radps, sa = in.gap_accel_sigma_mps2;
+  q << Eigen::Vector3d::Constant(noise_.gyro_noise_density * noise_.gyro_noise_density * dt +
+                                 sg * sg * dt * dt),
+      Eigen::Vector3d::Constant(noise_.accel_noise_density * noise_.accel_noise_density * dt +
+                                sa * sa * dt * dt);
   covariance_ = A * covariance_ * A.transpose() + B * q.asDiagonal() * B.transpose();
 
   // Bias Jacobians (Appendix B), using the values before this step on the right-hand sides.

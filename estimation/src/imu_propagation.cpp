@@ -1,6 +1,8 @@
 #include "hylo/estimation/imu_propagation.h"
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 
 #include "hylo/common/check.h"
 #include "hylo/common/time.h"
@@ -57,6 +59,16 @@ StateCovariance PropagationNoise(const ImuNoise& noise, const ImuInterval& in) {
   set(kVelocity, noise.accel_noise_density);
   set(kGyroBias, noise.gyro_bias_random_walk);
   set(kAccelBias, noise.accel_bias_random_walk);
+  // Inside an IMU gap: an unknown constant error δω, δa over dt (imu_propagation.h), whose
+  // position and velocity parts are correlated through δp = ½ δa dt², δv = δa dt.
+  const double sg2 = in.gap_gyro_sigma_radps * in.gap_gyro_sigma_radps;
+  const double sa2 = in.gap_accel_sigma_mps2 * in.gap_accel_sigma_mps2;
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  Q.block<3, 3>(kRotation, kRotation) += sg2 * dt * dt * I;
+  Q.block<3, 3>(kVelocity, kVelocity) += sa2 * dt * dt * I;
+  Q.block<3, 3>(kPosition, kPosition) += 0.25 * sa2 * dt * dt * dt * dt * I;
+  Q.block<3, 3>(kPosition, kVelocity) += 0.5 * sa2 * dt * dt * dt * I;
+  Q.block<3, 3>(kVelocity, kPosition) += 0.5 * sa2 * dt * dt * dt * I;
   return Q;
 }
 
@@ -77,8 +89,28 @@ ImuSample InterpolateImu(const std::vector<ImuSample>& samples, int64_t t_ns) {
   return out;
 }
 
+namespace {
+
+/// The last sample's stamp before [a_ns, b_ns] when the interval lies between samples farther
+/// apart than `gap_ns` (or that far past the last sample); nullopt outside a gap.
+std::optional<int64_t> GapStart(const std::vector<ImuSample>& samples, int64_t a_ns, int64_t b_ns,
+                                int64_t gap_ns) {
+  const auto after = std::lower_bound(
+      samples.begin(), samples.end(), b_ns,
+      [](const ImuSample& s, int64_t t) { return s.t_ns < t; });  // first at or after b
+  const auto before =
+      std::upper_bound(samples.begin(), samples.end(), a_ns,
+                       [](int64_t t, const ImuSample& s) { return t < s.t_ns; });  // first after a
+  const int64_t lo = before == samples.begin() ? a_ns : (before - 1)->t_ns;
+  const int64_t hi = after == samples.end() ? b_ns : after->t_ns;
+  if (hi - lo <= gap_ns) return std::nullopt;
+  return lo;
+}
+
+}  // namespace
+
 std::vector<ImuInterval> MakeIntervals(const std::vector<ImuSample>& samples, int64_t t0_ns,
-                                       int64_t t1_ns) {
+                                       int64_t t1_ns, const ImuGapModel* gap) {
   std::vector<ImuInterval> intervals;
   if (samples.empty() || t1_ns <= t0_ns) return intervals;
   std::vector<int64_t> knots{t0_ns};
@@ -86,13 +118,32 @@ std::vector<ImuInterval> MakeIntervals(const std::vector<ImuSample>& samples, in
     if (s.t_ns > t0_ns && s.t_ns < t1_ns) knots.push_back(s.t_ns);
   }
   knots.push_back(t1_ns);
-  ImuSample prev = InterpolateImu(samples, knots.front());
+  const auto measure = [&](int64_t t) {
+    if (gap == nullptr || t <= samples.back().t_ns) return InterpolateImu(samples, t);
+    ImuSample mean;
+    mean.t_ns = t;
+    mean.accel_imu = gap->accel_mean_imu;
+    mean.gyro_imu = gap->gyro_mean_imu;
+    return mean;
+  };
+  ImuSample prev = measure(knots.front());
   for (std::size_t i = 1; i < knots.size(); ++i) {
-    const ImuSample cur = InterpolateImu(samples, knots[i]);
+    const ImuSample cur = measure(knots[i]);
     ImuInterval in;
     in.dt_s = NanosToSeconds(knots[i] - knots[i - 1]);
     in.gyro_imu = 0.5 * (prev.gyro_imu + cur.gyro_imu);
     in.accel_imu = 0.5 * (prev.accel_imu + cur.accel_imu);
+    const std::optional<int64_t> gap_start =
+        gap != nullptr ? GapStart(samples, knots[i - 1], knots[i], gap->gap_ns) : std::nullopt;
+    if (gap_start) {
+      // The error is one constant over the whole gap: its effect on the velocity (and
+      // rotation) grows with the time e already spent in the gap, as σ (e + dt) in all, so this
+      // interval adds σ² ((e + dt)² − e²) = σ² dt² (1 + 2 e / dt).
+      const double elapsed_s = NanosToSeconds(knots[i - 1] - *gap_start);
+      const double growth = std::sqrt(1.0 + 2.0 * elapsed_s / in.dt_s);
+      in.gap_accel_sigma_mps2 = growth * gap->accel_sigma_mps2;
+      in.gap_gyro_sigma_radps = growth * gap->gyro_sigma_radps;
+    }
     intervals.push_back(in);
     prev = cur;
   }
@@ -100,7 +151,7 @@ std::vector<ImuInterval> MakeIntervals(const std::vector<ImuSample>& samples, in
 }
 
 NavState PredictNominal(const NavState& x0, const std::vector<ImuSample>& imu, bool use_imu,
-                        const Eigen::Vector3d& omega_cv_imu, int64_t t_ns) {
+                        const Eigen::Vector3d& omega_cv_imu, int64_t t_ns, const ImuGapModel* gap) {
   NavState x = x0;
   if (t_ns <= x0.t_ns) return x;
   if (!use_imu) {
@@ -108,7 +159,9 @@ NavState PredictNominal(const NavState& x0, const std::vector<ImuSample>& imu, b
     x.R_map_imu = x.R_map_imu * lie::SO3d::Exp(omega_cv_imu * dt);
     x.p_map_imu += x.v_map_imu * dt;
   } else if (!imu.empty()) {
-    for (const ImuInterval& in : MakeIntervals(imu, x0.t_ns, t_ns)) x = PropagateNominal(x, in);
+    for (const ImuInterval& in : MakeIntervals(imu, x0.t_ns, t_ns, gap)) {
+      x = PropagateNominal(x, in);
+    }
   }
   x.t_ns = t_ns;
   return x;

@@ -5,10 +5,12 @@
 #include <time.h>
 
 #include <chrono>
+#include <cmath>
 #include <utility>
 
 #include "hylo/common/check.h"
 #include "hylo/common/option_checks.h"
+#include "hylo/common/time.h"
 
 namespace hylo::estimation {
 namespace {
@@ -17,6 +19,8 @@ MeasurementQueueOptions QueueOptions(const ImuOptions& imu) {
   MeasurementQueueOptions q;
   q.use_imu = imu.enabled;
   q.imu_gap_ns = imu.GapNs();
+  q.accel_range_mps2 = imu.accel_range_mps2;
+  q.gyro_range_radps = imu.gyro_range_radps;
   return q;
 }
 
@@ -53,9 +57,19 @@ bool PipelineOutputOptions::IsValid(std::string* why) const {
   return true;
 }
 
+bool PipelineLidarOptions::IsValid(std::string* why) const {
+  if (std::isfinite(time_offset_s) && std::abs(time_offset_s) <= 1.0) return true;
+  return FailOption("time_offset_s", time_offset_s,
+                    "must be finite and within [-1, 1] s: a larger offset is another time base "
+                    "(fix the driver's clock), not a latency a constant can correct",
+                    why);
+}
+
+int64_t PipelineLidarOptions::TimeOffsetNs() const { return SecondsToNanos(time_offset_s); }
+
 bool OdometryPipelineOptions::IsValid(std::string* why) const {
-  return CheckSection(imu, "imu", why) && estimator.IsValid(why) &&
-         CheckSection(initial_uncertainty, "initial_uncertainty", why) &&
+  return CheckSection(imu, "imu", why) && CheckSection(lidar, "lidar", why) &&
+         estimator.IsValid(why) && CheckSection(initial_uncertainty, "initial_uncertainty", why) &&
          CheckSection(init, "init", why) && CheckSection(preprocess, "preprocess", why) &&
          CheckSection(planes, "planes", why) && CheckSection(map, "map", why) &&
          CheckSection(localization, "localization", why) && CheckSection(output, "output", why);
@@ -75,6 +89,14 @@ OdometryPipeline::OdometryPipeline(const OdometryPipelineOptions& options)
 }
 
 OdometryPipeline::~OdometryPipeline() = default;
+
+void OdometryPipeline::AddScan(LidarScan scan) {
+  // Point times are offsets from the scan start, so the two stamps carry the whole shift.
+  const int64_t offset_ns = options_.lidar.TimeOffsetNs();
+  scan.t_ns += offset_ns;
+  scan.end_t_ns += offset_ns;
+  queue_.AddScan(std::move(scan));
+}
 
 const std::vector<LocalizationEvent>& OdometryPipeline::events() const {
   static const std::vector<LocalizationEvent> kNone;

@@ -133,6 +133,9 @@ TEST(RunConfig, EffectiveConfigurationRoundTrips) {
   config.pipeline.initial_uncertainty.localized_position_sigma_m = 0.2;
   config.lidar.topic = "/velodyne_points";
   config.lidar.time_convention = io::PointTimeConvention::kOuster;
+  config.pipeline.lidar.time_offset_s = -0.0125;
+  config.pipeline.imu.accel_range_mps2 = 78.45;
+  config.pipeline.imu.gyro_range_radps = 8.7;
   config.pipeline.preprocess.max_range_m = 80.5;
   config.pipeline.imu.noise.gyro_noise_density = 1.25e-4;
   config.prior_map.resolution_m = 0.25;
@@ -149,6 +152,9 @@ TEST(RunConfig, EffectiveConfigurationRoundTrips) {
   EXPECT_DOUBLE_EQ(back.pipeline.initial_uncertainty.localized_position_sigma_m, 0.2);
   EXPECT_EQ(back.lidar.topic, config.lidar.topic);
   EXPECT_EQ(back.lidar.time_convention, config.lidar.time_convention);
+  EXPECT_DOUBLE_EQ(back.pipeline.lidar.time_offset_s, -0.0125);
+  EXPECT_DOUBLE_EQ(back.pipeline.imu.accel_range_mps2, 78.45);
+  EXPECT_DOUBLE_EQ(back.pipeline.imu.gyro_range_radps, 8.7);
   EXPECT_DOUBLE_EQ(back.pipeline.preprocess.max_range_m, 80.5);
   EXPECT_DOUBLE_EQ(back.pipeline.imu.noise.gyro_noise_density, 1.25e-4);
   EXPECT_DOUBLE_EQ(back.prior_map.resolution_m, 0.25);

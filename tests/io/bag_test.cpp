@@ -1,5 +1,6 @@
 // ROS1 bags: write -> read round trip for every driver layout, receive order, DescribeBag,
-// and every documented failure (missing/truncated bag, missing topic, wrong type, no x/y/z).
+// and every documented failure (missing file, not a bag, missing topic, wrong type, no x/y/z);
+// truncated and unindexed bags are read up to their last complete message.
 
 #include <gtest/gtest.h>
 
@@ -194,19 +195,29 @@ TEST(BagReader, MissingFileNamesThePath) {
   EXPECT_NE(why.find("no such file"), std::string::npos) << why;
 }
 
-TEST(BagReader, TruncatedBagIsAnErrorNamingTheFile) {
+// Cut and killed bags in detail: bag_recovery_test.
+TEST(BagReader, TruncatedBagIsReadUpToTheCut) {
   const std::string path = testing::ScratchDir("bag_truncated") + "/cut.bag";
-  WriteRecording(path, PointTimeConvention::kVelodyne, 200);
+  const Recording rec = WriteRecording(path, PointTimeConvention::kVelodyne, 200);
   const auto size = std::filesystem::file_size(path);
-  for (double keep : {0.3, 0.9, 0.999}) {
+  std::size_t last_scans = rec.scans.size();
+  for (double keep : {0.999, 0.9, 0.3}) {
     std::filesystem::resize_file(path, static_cast<uintmax_t>(size * keep));
-    const std::string why = OpenError(path, Options());
-    EXPECT_NE(why.find(path), std::string::npos) << keep << ": " << why;
-    EXPECT_THROW(DescribeBag(path), std::runtime_error);
+    auto reader = OpenBag(path, Options());
+    LogMessage m;
+    std::size_t scans = 0;
+    while (reader->Next(&m)) scans += m.kind == LogMessage::Kind::kScan;
+    ASSERT_NE(reader->recovery(), nullptr) << keep;
+    EXPECT_EQ(reader->recovery()->file_bytes, static_cast<uint64_t>(size * keep));
+    EXPECT_GT(scans, 0u) << keep;
+    EXPECT_LE(scans, last_scans) << keep;  // less kept, never more read
+    last_scans = scans;
+    EXPECT_TRUE(DescribeBag(path).recovery.has_value());
   }
+  EXPECT_LT(last_scans, rec.scans.size() / 2);  // 30 % of the bytes
 }
 
-TEST(BagReader, InterruptedRecordingIsAnErrorSuggestingReindex) {
+TEST(BagReader, InterruptedRecordingIsReadWithoutItsIndex) {
   const std::string dir = testing::ScratchDir("bag_unindexed");
   std::mt19937 rng(1);
   BagWriter writer(dir + "/live.bag");
@@ -215,9 +226,24 @@ TEST(BagReader, InterruptedRecordingIsAnErrorSuggestingReindex) {
                      PointTimeConvention::kVelodyne, "lidar");
   }
   std::filesystem::copy_file(dir + "/live.bag", dir + "/copy.bag");  // as if killed now
-  const std::string why = OpenError(dir + "/copy.bag", Options());
-  EXPECT_NE(why.find(dir + "/copy.bag"), std::string::npos) << why;
-  EXPECT_NE(why.find("rosbag reindex"), std::string::npos) << why;
+  LogReadOptions options = Options();
+  options.imu_topic.clear();
+  auto reader = OpenBag(dir + "/copy.bag", options);
+  LogMessage m;
+  std::size_t scans = 0;
+  while (reader->Next(&m)) ++scans;
+  ASSERT_NE(reader->recovery(), nullptr);
+  EXPECT_NE(reader->recovery()->damage.find("no index"), std::string::npos);
+  EXPECT_GT(scans, 5u);
+}
+
+TEST(BagReader, BagCutBeforeItsFirstScanNamesTheMissingTopic) {
+  const std::string path = testing::ScratchDir("bag_cut_early") + "/cut.bag";
+  WriteRecording(path, PointTimeConvention::kVelodyne, 200);
+  std::filesystem::resize_file(path, 4200);  // the bag header and a few bytes of a chunk
+  const std::string why = OpenError(path, Options());
+  EXPECT_NE(why.find(path), std::string::npos) << why;
+  EXPECT_NE(why.find("no topic '/points'"), std::string::npos) << why;
 }
 
 TEST(BagReader, NotABagIsAnError) {
@@ -247,7 +273,8 @@ TEST(BagReader, TopicOfTheWrongTypeIsAnError) {
   options.lidar_topic = "/imu";
   const std::string why = OpenError(path, options);
   EXPECT_NE(why.find("has type sensor_msgs/Imu, expected sensor_msgs/PointCloud2"),
-            std::string::npos) << why;
+            std::string::npos)
+      << why;
 }
 
 }  // namespace

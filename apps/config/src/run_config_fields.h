@@ -17,6 +17,11 @@ struct ImuSection {
   ImuStream& stream;
   estimation::ImuOptions& options;
 };
+/// `lidar:`: the log's stream and the lidar's clock offset (the pipeline's).
+struct LidarSection {
+  LidarStream& stream;
+  estimation::PipelineLidarOptions& options;
+};
 /// `localization:`: the start pose given in the file, and the supervisor's settings.
 struct LocalizationSection {
   std::string& initial_guess;
@@ -41,9 +46,10 @@ void VisitFields(V& v, estimation::ImuNoise& noise) {
 }
 
 template <class V>
-void VisitFields(V& v, LidarStream& lidar) {
-  v("topic", lidar.topic);
-  v("time_convention", lidar.time_convention);
+void VisitFields(V& v, LidarSection& lidar) {
+  v("topic", lidar.stream.topic);
+  v("time_convention", lidar.stream.time_convention);
+  v("time_offset_s", lidar.options.time_offset_s);
 }
 
 template <class V>
@@ -52,6 +58,8 @@ void VisitFields(V& v, ImuSection& imu) {
   v("accel_scale", imu.stream.accel_scale);
   v("rate_hz", imu.options.rate_hz);
   v("gravity_mps2", imu.options.gravity_mps2);
+  v("accel_range_mps2", imu.options.accel_range_mps2);
+  v("gyro_range_radps", imu.options.gyro_range_radps);
   v.Section("noise", imu.options.noise);
 }
 
@@ -232,7 +240,6 @@ void VisitFields(V& v, LocalizationSection& c) {
   v.Section("global_map", o.global_map);
 }
 
-
 template <class V>
 void VisitFields(V& v, OutputSection& output) {
   v("dense_map_voxel_m", output.pipeline.dense_map_voxel_m);
@@ -285,11 +292,12 @@ void VisitFields(V& v, terrain::GroundFilterOptions& o) {
 template <class V>
 void VisitFields(V& v, RunConfig& run) {
   estimation::OdometryPipelineOptions& p = run.pipeline;
+  LidarSection lidar{run.lidar, p.lidar};
   ImuSection imu{run.imu, p.imu};
   LocalizationSection localization{run.initial_guess, p.localization};
   OutputSection output{p.output, run.output};
   v("backend", p.estimator.backend);
-  v.Section("lidar", run.lidar);
+  v.Section("lidar", lidar);
   v.OptionalSection("imu", imu, p.imu.enabled);
   v.Section("T_imu_lidar", run.T_imu_lidar);
   v.Section("preprocess", p.preprocess);

@@ -1,6 +1,7 @@
 #pragma once
-// Private to hylo_io: opening a ROS1 bag with one-line errors that name the file, and
-// reading one of its messages.
+// Private to hylo_io: opening a ROS1 bag with one-line errors that name the file, telling a
+// bag rosbag cannot index (recording killed, file cut: read record by record instead) from a
+// file that is no bag at all, and reading one of its messages through a bounded stream.
 
 #include <rosbag/bag.h>
 #include <rosbag/exceptions.h>
@@ -14,10 +15,15 @@
 
 #include "hylo/io/ros_bridge.h"
 
+#include "bag_records.h"
+
 namespace hylo::io::detail {
 
-/// Opens a bag for reading; one-line std::runtime_error naming the file on any failure.
-inline void OpenForReading(const std::string& path, rosbag::Bag* bag) {
+/// Opens a bag through its index. Throws a one-line std::runtime_error naming the file when it
+/// is missing, not a regular file, or unreadable and not a bag v2.0. Returns false, with what
+/// is wrong in `*damage`, for a bag v2.0 whose index rosbag cannot read: no index (the
+/// recording was killed) or an index cut off with the end of the file.
+inline bool OpenIndexed(const std::string& path, rosbag::Bag* bag, std::string* damage) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) {
     throw std::runtime_error("bag '" + path + "': no such file");
@@ -27,13 +33,17 @@ inline void OpenForReading(const std::string& path, rosbag::Bag* bag) {
   }
   try {
     bag->open(path, rosbag::bagmode::Read);
-  } catch (const rosbag::BagUnindexedException& e) {
-    throw std::runtime_error("bag '" + path + "': has no index (recording interrupted?); " +
-                             "`rosbag reindex` can rebuild it");
+    return true;
+  } catch (const rosbag::BagUnindexedException&) {
+    *damage = "no index (recording interrupted?)";
   } catch (const std::exception& e) {
-    throw std::runtime_error("bag '" + path + "': cannot be read, truncated or not a ROS1 bag (" +
-                             e.what() + ")");
+    if (!HasBagV2Magic(path)) {
+      throw std::runtime_error("bag '" + path + "': cannot be read, truncated or not a ROS1 bag (" +
+                               e.what() + ")");
+    }
+    *damage = "index unreadable (file cut short?)";
   }
+  return false;
 }
 
 /// The message, deserialized with ros_bridge::Deserialize rather than

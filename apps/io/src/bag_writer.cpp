@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "bag_open.h"
 #include "hylo/io/ros_bridge.h"
 
 namespace hylo::io {
@@ -24,16 +23,21 @@ struct BagWriter::Impl {
     try {
       bag.write(topic, ros_bridge::ToRosTime(std::max<int64_t>(receive_t_ns, 1)), msg);
     } catch (const rosbag::BagException& e) {
-      throw std::runtime_error("bag '" + path + "': cannot write to " + topic + " (" +
-                               e.what() + ")");
+      throw std::runtime_error("bag '" + path + "': cannot write to " + topic + " (" + e.what() +
+                               ")");
     }
   }
 };
 
-BagWriter::BagWriter(const std::string& path) : impl_(std::make_unique<Impl>()) {
+BagWriter::BagWriter(const std::string& path, BagCompression compression)
+    : impl_(std::make_unique<Impl>()) {
   impl_->path = path;
   try {
     impl_->bag.open(path, rosbag::bagmode::Write);
+    impl_->bag.setCompression(compression == BagCompression::kBz2 ? rosbag::compression::BZ2
+                              : compression == BagCompression::kLz4
+                                  ? rosbag::compression::LZ4
+                                  : rosbag::compression::Uncompressed);
   } catch (const rosbag::BagException& e) {
     throw std::runtime_error("bag '" + path + "': cannot be created (" + e.what() + ")");
   }
@@ -48,7 +52,7 @@ BagWriter::~BagWriter() {
 }
 
 void BagWriter::WriteImu(const std::string& topic, const ImuSample& imu,
-                         const std::string& frame_id) {
+                         const std::string& frame_id, int64_t receive_t_ns) {
   sensor_msgs::Imu msg;
   msg.header.stamp = ros_bridge::ToRosTime(imu.t_ns);
   msg.header.frame_id = frame_id;
@@ -59,7 +63,7 @@ void BagWriter::WriteImu(const std::string& topic, const ImuSample& imu,
   msg.angular_velocity.x = imu.gyro_imu.x();
   msg.angular_velocity.y = imu.gyro_imu.y();
   msg.angular_velocity.z = imu.gyro_imu.z();
-  impl_->Write(topic, imu.t_ns, msg);
+  impl_->Write(topic, receive_t_ns >= 0 ? receive_t_ns : imu.t_ns, msg);
 }
 
 void BagWriter::WriteScan(const std::string& topic, const LidarScan& scan,

@@ -1,5 +1,6 @@
 #include "hylo/io/log_reader.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 
@@ -7,6 +8,14 @@
 #include "hylo/io/scan_folder.h"
 
 namespace hylo::io {
+
+std::string LogRecovery::Summary() const {
+  char line[160];
+  std::snprintf(line, sizeof(line),
+                ": recovered %zu messages over %.3f s; last %llu bytes unreadable", messages,
+                messages > 0 ? span_s() : 0.0, static_cast<unsigned long long>(unreadable_bytes));
+  return damage + line + (stop_reason.empty() ? "" : " (" + stop_reason + ")");
+}
 
 std::unique_ptr<LogReader> OpenLog(const std::string& path, const LogReadOptions& options) {
   namespace fs = std::filesystem;

@@ -44,7 +44,6 @@ io::Json EventsJson(const std::vector<estimation::LocalizationEvent>& events,
   return array;
 }
 
-
 // The paper's cloud-to-cloud metric: the registered scans against the prior map.
 io::Json CloudToCloudJson(const PointCloud& registered_map,
                           const registration::NeighborSearch& reference, double max_distance_m) {
@@ -91,15 +90,56 @@ io::Json PipelineCountersJson(const estimation::PipelineCounters& c) {
   j["queue"]["imu_stale"] = c.queue.imu_stale;
   j["queue"]["scan_duplicates"] = c.queue.scan_duplicates;
   j["queue"]["scan_stale"] = c.queue.scan_stale;
+  j["queue"]["imu_non_finite"] = c.queue.imu_non_finite;
+  j["queue"]["imu_saturated"] = c.queue.imu_saturated;
   j["queue"]["imu_gaps"] = c.queue.imu_gaps;
   j["queue"]["longest_imu_gap_s"] = NanosToSeconds(c.queue.longest_imu_gap_ns);
+  j["queue"]["imu_gap_total_s"] = NanosToSeconds(c.queue.imu_gap_total_ns);
+  j["queue"]["scans_past_imu"] = c.queue.scans_past_imu;
   return j;
+}
+
+io::Json LogRecoveryJson(const io::LogRecovery& r) {
+  io::Json j;
+  j["damage"] = r.damage;
+  j["stop_reason"] = r.stop_reason;
+  j["messages_recovered"] = r.messages;
+  j["span_s"] = r.messages > 0 ? r.span_s() : 0.0;
+  j["file_bytes"] = r.file_bytes;
+  j["unreadable_bytes"] = r.unreadable_bytes;
+  j["summary"] = r.Summary();
+  return j;
+}
+
+std::string ImuFaultsLine(const estimation::QueueCounters& q, std::size_t unread_non_finite) {
+  std::string line;
+  const auto add = [&](std::size_t n, const std::string& what) {
+    if (n > 0) line += (line.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+  };
+  if (q.imu_gaps > 0) {
+    char gaps[96];
+    std::snprintf(gaps, sizeof(gaps), "gap%s (longest %.3f s, %.3f s in all)",
+                  q.imu_gaps == 1 ? "" : "s", NanosToSeconds(q.longest_imu_gap_ns),
+                  NanosToSeconds(q.imu_gap_total_ns));
+    add(q.imu_gaps, gaps);
+  }
+  add(q.imu_duplicates, "duplicated stamps dropped");
+  add(q.imu_stale, "stamps going backwards dropped");
+  add(q.imu_non_finite + unread_non_finite, "NaN/inf samples dropped");
+  add(q.imu_saturated, "clipped (full-scale) samples dropped");
+  add(q.scans_past_imu, "scans registered while the IMU was silent");
+  return line;
 }
 
 RunResult RunLog(const RunRequest& request) {
   const auto run_start = std::chrono::steady_clock::now();
   const config::RunConfig& config = request.config;
-  std::filesystem::create_directories(request.out_dir);
+  std::error_code ec;
+  std::filesystem::create_directories(request.out_dir, ec);
+  if (ec) {
+    throw std::runtime_error("cannot create the output folder '" + request.out_dir +
+                             "': " + ec.message());
+  }
   config::SaveRunConfig(request.out_dir + "/config.yaml", config);
   OdometryPipeline pipeline(config.PipelineOptions());
 
@@ -113,6 +153,10 @@ RunResult RunLog(const RunRequest& request) {
   const double prior_loaded_after_s = SecondsSince(run_start);
 
   auto log = io::OpenLog(request.log, config.LogOptions());
+  if (const io::LogRecovery* r = log->recovery()) {
+    std::fprintf(stderr, "warning: %s: %s: read record by record up to its last complete message\n",
+                 request.log.c_str(), r->damage.c_str());
+  }
   std::vector<ScanResult> results;
   // Dense registered scans, one point per voxel (the crafting input and the c2c metric).
   // A hash of voxels, not a tree: nothing searches this map during the run, and the tree's
@@ -154,6 +198,15 @@ RunResult RunLog(const RunRequest& request) {
   pipeline.Finish(&results);
   consume();
   progress.Finish();
+  const io::LogRecovery* recovery = log->recovery();
+  if (recovery != nullptr) {
+    std::fprintf(stderr, "warning: %s: %s\n", request.log.c_str(), recovery->Summary().c_str());
+  }
+  const std::string imu_faults =
+      ImuFaultsLine(pipeline.counters().queue, log->counters().dropped_non_finite_imu);
+  if (!imu_faults.empty()) {
+    std::fprintf(stderr, "warning: %s: IMU: %s\n", request.log.c_str(), imu_faults.c_str());
+  }
   if (pipeline.status() == OdometryPipeline::Status::kFailed) {
     throw std::runtime_error(request.log + ": " + pipeline.message());
   }
@@ -202,6 +255,13 @@ RunResult RunLog(const RunRequest& request) {
   j["imu"] = config.pipeline.imu.enabled;
   j["scans_processed"] = results.size();
   j["counters"] = PipelineCountersJson(pipeline.counters());
+  const io::LogReadCounters& read = log->counters();
+  j["log_read"]["imu_messages"] = read.imu_messages;
+  j["log_read"]["scan_messages"] = read.scan_messages;
+  j["log_read"]["dropped_non_finite_points"] = read.dropped_non_finite_points;
+  j["log_read"]["dropped_non_finite_imu"] = read.dropped_non_finite_imu;
+  j["log_read"]["empty_scans"] = read.empty_scans;
+  j["log_read"]["recovery"] = recovery != nullptr ? LogRecoveryJson(*recovery) : io::Json();
   j["path_length_m"] = path_m;
   j["map_points"] = pipeline.map().Size();
   j["map_points_added"] = pipeline.map().run_size();

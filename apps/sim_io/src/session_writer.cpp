@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "hylo/common/time.h"
 #include "hylo/io/bag_writer.h"
 #include "hylo/io/trajectory_io.h"
 #include "hylo/sim_io/reference_outputs.h"
@@ -77,6 +78,8 @@ io::Json ManifestJson(const SimulationOptions& options, const SessionSummary& s,
   j["max_tilt_deg"] = s.max_tilt_deg;
   j["T_imu_lidar"] = PoseJson(options.lidar.T_imu_lidar);
   j["lidar_time_offset_ns"] = static_cast<long long>(options.lidar.time_offset_ns);
+  // What a run configuration needs to undo it (t_imu = t_lidar + lidar.time_offset_s).
+  j["config_lidar_time_offset_s"] = -NanosToSeconds(options.lidar.time_offset_ns);
   j["imu_initial_accel_bias_mps2"] = Vec(s.initial_accel_bias);
   j["imu_initial_gyro_bias_radps"] = Vec(s.initial_gyro_bias);
   j["options"] = OptionsToJson(options);

@@ -75,7 +75,7 @@ void SlidingWindow::AppendState(const DeskewedScan& scan) {
   if (imu_options_.enabled && !imu_.empty()) {
     next->imu =
         std::make_unique<ImuPreintegration>(last.gyro_bias, last.accel_bias, imu_options_.noise);
-    for (const ImuInterval& in : MakeIntervals(imu_.samples(), last.t_ns, scan.t_ns)) {
+    for (const ImuInterval& in : imu_.Intervals(last.t_ns, scan.t_ns)) {
       next->imu->Integrate(in);
     }
     predicted = next->imu->Predict(last, last.gravity_map);

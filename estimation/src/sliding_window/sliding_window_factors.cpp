@@ -1,7 +1,9 @@
 #include "sliding_window_factors.h"
 
-#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "hylo/estimation/sliding_window/so3_manifold.h"
 
@@ -68,8 +70,15 @@ void StateBlocks::FromNavState(const NavState& x) {
 }
 
 ImuFactor::ImuFactor(const ImuPreintegration& preintegration) : preintegration_(preintegration) {
-  const ImuCovariance information = preintegration.ResidualCovariance().inverse();
-  sqrt_information_ = information.llt().matrixL().transpose();
+  // Σ = V D Vᵀ, so D^(-1/2) Vᵀ whitens the residual (rᵀ Σ⁻¹ r = ‖D^(-1/2) Vᵀ r‖²). Across an IMU
+  // gap Σ holds a large, almost rank-one block (one unknown acceleration error drives both δp
+  // and δv) beside the tiny white-noise terms: inverting it and then factoring the inverse
+  // loses its definiteness to rounding, the eigen-decomposition does not.
+  const Eigen::SelfAdjointEigenSolver<ImuCovariance> eigen(preintegration.ResidualCovariance());
+  const Eigen::Matrix<double, kImuFactorDim, 1> d = eigen.eigenvalues();
+  const double floor = std::max(d.maxCoeff() * 1e-15, std::numeric_limits<double>::min());
+  sqrt_information_ =
+      d.cwiseMax(floor).cwiseSqrt().cwiseInverse().asDiagonal() * eigen.eigenvectors().transpose();
 }
 
 bool ImuFactor::Evaluate(double const* const* parameters, double* residuals,

@@ -49,7 +49,7 @@ class ImuFactor final : public ceres::SizedCostFunction<15, 4, 3, 9, 4, 3, 9, 3>
 
  private:
   const ImuPreintegration& preintegration_;
-  ImuCovariance sqrt_information_;  // Lᵀ with L Lᵀ = Σ⁻¹
+  ImuCovariance sqrt_information_;  // W with Wᵀ W = Σ⁻¹
 };
 
 /// Point-to-plane residuals of one scan, r_k = w_k (nᵀ(R q_k + p) + d). Blocks: rotation,

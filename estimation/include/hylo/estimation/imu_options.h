@@ -25,6 +25,12 @@ struct ImuOptions {
   double rate_hz = 200.0;      ///< nominal sample rate, Hz (> 0): five missing samples are a gap
   double gravity_mps2 = 9.81;  ///< local gravity magnitude, m/s² ([9.7, 9.9]: on Earth)
   ImuNoise noise;              ///< continuous-time noise densities
+  /// Full-scale ranges: a sample reading at least this on any axis is clipped (its true value
+  /// is unknown), so it is dropped and counted like a missing one. The defaults are the widest
+  /// ranges common MEMS parts offer (16 g, 2000 deg/s), which never flag an unclipped sample;
+  /// set the value a narrower sensor reports when clipped. 0 = no check.
+  double accel_range_mps2 = 156.9;  ///< m/s² (>= 2 g when set: gravity alone must fit)
+  double gyro_range_radps = 34.9;   ///< rad/s (>= 0)
 
   bool IsValid(std::string* why) const;
   /// Consecutive IMU stamps farther apart than this are a gap: five missing samples, ns.

@@ -38,11 +38,25 @@ struct PipelineOutputOptions {
   bool IsValid(std::string* why) const;
 };
 
+/// The lidar's clock (section `lidar:` of a run configuration, beside the log's topic).
+struct PipelineLidarOptions {
+  /// Constant offset of the IMU's clock from the lidar's: t_imu = t_lidar + time_offset_s, s
+  /// (FAST-LIO's `time_offset_lidar_to_imu`, the same sign). Scans are moved onto the IMU
+  /// clock as they enter the pipeline, so every output is stamped in the IMU clock. At most
+  /// 1 s: a larger constant is not a latency but another time base (e.g. time since boot
+  /// against Unix time), which a constant cannot correct and which would pair every scan with
+  /// IMU data from elsewhere in the log.
+  double time_offset_s = 0.0;
+  bool IsValid(std::string* why) const;
+  int64_t TimeOffsetNs() const;
+};
+
 /// Every setting of the pipeline. Member names are the run configuration's sections, so a
 /// message from IsValid names the key a user wrote (the estimator's sections sit at the top
 /// level of the configuration: `backend`, `lidar_update`, `no_imu`, `ieskf`, `sliding_window`).
 struct OdometryPipelineOptions {
   ImuOptions imu;                            ///< the inertial sensor, or none
+  PipelineLidarOptions lidar;                ///< the lidar's clock offset
   EstimatorOptions estimator;                ///< back-end and its settings
   InitialUncertainty initial_uncertainty;    ///< how a back-end starts
   ImuInitializerOptions init;                ///< static IMU initialisation
@@ -68,7 +82,8 @@ class OdometryPipeline {
   ~OdometryPipeline();
 
   void AddImu(const ImuSample& sample) { queue_.AddImu(sample); }
-  void AddScan(LidarScan scan) { queue_.AddScan(std::move(scan)); }
+  /// The scan's stamps are moved onto the IMU clock here (lidar.time_offset_s).
+  void AddScan(LidarScan scan);
 
   /// Localization: the prior map (map frame, downsampled by the caller, e.g. BuildPriorMap;
   /// its global-localization raster is built here) and the guess of T_map_imu at the start
@@ -135,7 +150,7 @@ class OdometryPipeline {
   std::unique_ptr<Estimator> estimator_;
   mapping::MapManager map_;
   registration::PlaneMatcher matcher_;
-  std::unique_ptr<LocalizationSupervisor> supervisor_;  // null in SLAM
+  std::unique_ptr<LocalizationSupervisor> supervisor_;   // null in SLAM
   std::unique_ptr<registration::GlobalMap> global_map_;  // the prior's raster; null: none
   std::string global_map_unavailable_;                   // ... and why
   TwistEstimator twist_;

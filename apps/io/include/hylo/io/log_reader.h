@@ -52,6 +52,24 @@ struct LogReadCounters {
   std::size_t empty_scans = 0;                ///< scans with no valid point (still delivered)
 };
 
+/// What a reader could use of a damaged log (a bag whose recording was killed, or cut short):
+/// it is read up to its last complete message. Filled in while the log is read; final once
+/// Next() has returned false.
+struct LogRecovery {
+  std::string damage;            ///< what is wrong, e.g. "no index (recording interrupted?)"
+  std::string stop_reason;       ///< where reading stopped, e.g. "the last chunk is cut"
+  std::size_t messages = 0;      ///< complete messages found, every topic
+  int64_t first_receive_ns = 0;  ///< receive time of the first of them, ns
+  int64_t last_receive_ns = 0;   ///< receive time of the last of them, ns
+  uint64_t file_bytes = 0;
+  uint64_t unreadable_bytes = 0;  ///< bytes after the last record read whole
+
+  double span_s() const { return (last_receive_ns - first_receive_ns) * 1e-9; }
+  /// One line, e.g. "no index (recording interrupted?): recovered 1234 messages over 56.7 s;
+  /// last 890 bytes unreadable (the last chunk is cut)".
+  std::string Summary() const;
+};
+
 class LogReader {
  public:
   virtual ~LogReader() = default;
@@ -61,6 +79,8 @@ class LogReader {
   virtual const LogReadCounters& counters() const = 0;
   /// The per-point time convention in use (after detection).
   virtual PointTimeConvention time_convention() const = 0;
+  /// Non-null when the log is damaged and read only up to its last complete message.
+  virtual const LogRecovery* recovery() const { return nullptr; }
 };
 
 /// Opens a bag (file) or a scan folder (directory). Throws std::runtime_error with a one-line

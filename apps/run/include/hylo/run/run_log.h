@@ -26,20 +26,21 @@
 #include "hylo/config/run_config.h"
 #include "hylo/estimation/odometry_pipeline.h"
 #include "hylo/io/json.h"
+#include "hylo/io/log_reader.h"
 #include "hylo/io/trajectory_io.h"
 
 namespace hylo::run {
 
 struct RunRequest {
-  std::string log;                 ///< ROS1 bag or scan folder
-  config::RunConfig config;        ///< the run's configuration (backend, sensors, ...)
-  std::string prior_map;           ///< PCD/PLY prior map; empty = SLAM from scratch
+  std::string log;           ///< ROS1 bag or scan folder
+  config::RunConfig config;  ///< the run's configuration (backend, sensors, ...)
+  std::string prior_map;     ///< PCD/PLY prior map; empty = SLAM from scratch
   std::optional<Eigen::Isometry3d> guess_world_imu;  ///< T_world_imu guess at the start;
-                                   ///< none with prior_map: a global start
-  double c2c_max_distance_m = 0.5; ///< outlier threshold of the cloud-to-cloud metric, m
-  std::string out_dir;             ///< created if missing
-  std::string label = "run";       ///< progress label
-  bool show_progress = true;       ///< progress on stderr
+                                                     ///< none with prior_map: a global start
+  double c2c_max_distance_m = 0.5;  ///< outlier threshold of the cloud-to-cloud metric, m
+  std::string out_dir;              ///< created if missing
+  std::string label = "run";        ///< progress label
+  bool show_progress = true;        ///< progress on stderr
 };
 
 struct RunResult {
@@ -52,6 +53,14 @@ struct RunResult {
 /// The pipeline's counters (scans processed, skipped, not applied, queue drops and gaps) as
 /// the `counters` object of summary.json; the ROS node's health topic carries the same.
 io::Json PipelineCountersJson(const estimation::PipelineCounters& counters);
+
+/// A damaged log's recovery as the `log.recovery` object of summary.json (and `hylo info`).
+io::Json LogRecoveryJson(const io::LogRecovery& recovery);
+
+/// The IMU faults the queue dropped or noticed, and `unread_non_finite` samples the log reader
+/// already dropped for NaN/inf values, as one line for the user ("" when there were none):
+/// gaps (count, longest, total), duplicated and backward stamps, NaN/inf and clipped samples.
+std::string ImuFaultsLine(const estimation::QueueCounters& queue, std::size_t unread_non_finite);
 
 /// Runs the log. Throws std::runtime_error naming the file and reason for unreadable input,
 /// a failed initialisation (vehicle moving, no accepted ICP start) or a log with no scan.
