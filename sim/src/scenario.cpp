@@ -147,9 +147,14 @@ Scenario DrawScenario(uint64_t number) {
   t.min_turn_speed_mps = std::min(0.5, t.cruise_speed_mps);
   t.jitter_z_m = rng.Uniform(0.002, 0.008);
   t.jitter_tilt_rad = rng.Uniform(0.002, 0.008);
-  // 90-110 s of mapping and 45-60 s of localization at cruise speed (turns take longer).
-  s.site.route_a_m = t.cruise_speed_mps * rng.Uniform(90.0, 110.0);
-  s.site.route_b_m = t.cruise_speed_mps * rng.Uniform(45.0, 60.0);
+  // 70-85 s of mapping and 35-45 s of localization at cruise speed (turns take longer).
+  s.site.route_a_m = t.cruise_speed_mps * rng.Uniform(70.0, 85.0);
+  s.site.route_b_m = t.cruise_speed_mps * rng.Uniform(35.0, 45.0);
+  // The spur (out, a turning loop, back) takes at most 60 % of the mapping drive; slow
+  // drives too short for a 15 m spur have none.
+  const double longest_spur_m = 0.3 * s.site.route_a_m - 20.0;
+  s.site.featureless_m = std::min(s.site.featureless_m, longest_spur_m);
+  if (s.site.featureless_m < 15.0) s.site.featureless_m = 0.0;
   s.vibration = DrawVibration(s.imu.base.rate_hz, &rng);
   return s;
 }

@@ -248,8 +248,8 @@ Drives PlanDrives(const SiteRecipe& recipe, const LaneGrid& lanes, Rng* rng,
   // them) and ends early where those lanes end.
   const Edges covered = walker.ReachedWithin(driven_a_m(a));
   drives.route_b.clear();
-  if (covered.empty()) {  // the mapping drive never reached the yard: stay on its entry lane
-    drives.route_b = {entry_node, entry_node - 0.5 * kApproachM * entry.outward};
+  if (covered.empty()) {  // the mapping drive never completed a lane: drive its approach
+    drives.route_b = {drives.start, entry_node};
     return drives;
   }
   Walker b_walker(lanes, rng, &covered);

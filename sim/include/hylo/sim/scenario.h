@@ -83,8 +83,8 @@ struct Scenario {
   ImuGrade imu;
   TrajectoryOptions trajectory;  ///< speed, accelerations, suspension shake
   Vibration vibration;
-  double max_drive_a_s = 150.0;  ///< the mapping drive stops after this much driving, s
-  double max_drive_b_s = 80.0;   ///< ... the localization drive, s
+  double max_drive_a_s = 120.0;  ///< the mapping drive stops after this much driving, s
+  double max_drive_b_s = 60.0;   ///< ... the localization drive, s
   double terrain_resolution_m = 0.2;
   double index_cell_m = 2.0;
   int64_t start_a_ns = 1'700'000'000'000'000'000;  ///< stamp of the mapping drive's start, ns
