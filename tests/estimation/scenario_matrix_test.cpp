@@ -3,7 +3,7 @@
 // configured from its sensor sheet, SLAM and localization with both back-ends. It fails when
 // a run diverges or fails; the bounds are a few times the matrix's targets (SLAM drift 0.5 %
 // on the worst scenario, localization 3 cm), so they catch a broken estimator, not noise.
-// About a minute of CPU per scenario.
+// 15 s mapping and 8 s localization drives keep it near 20 s of CPU per scenario.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -18,8 +18,8 @@ class ScenarioMatrix : public ::testing::TestWithParam<uint64_t> {};
 
 TEST_P(ScenarioMatrix, NoBackendDivergesInSlamOrLocalization) {
   sim::Scenario scenario = sim::DrawScenario(GetParam());
-  scenario.max_drive_a_s = 60.0;
-  scenario.max_drive_b_s = 25.0;
+  scenario.max_drive_a_s = 15.0;
+  scenario.max_drive_b_s = 8.0;
   ScenarioRunOptions options;
   options.preset_dir = std::string(HYLO_SOURCE_DIR) + "/config";
   const ScenarioFigures f = RunScenario(scenario, options);
@@ -40,9 +40,10 @@ TEST_P(ScenarioMatrix, NoBackendDivergesInSlamOrLocalization) {
   }
 }
 
-// A VLP-16 with a consumer IMU starting on a 12 deg slope; a Hesai-like head on a consumer
-// IMU; the Livox-like rosette on a consumer IMU (chosen for their sensors, not their results).
-INSTANTIATE_TEST_SUITE_P(Subset, ScenarioMatrix, ::testing::Values(0u, 5u, 11u),
+// A VLP-16 on an industrial IMU starting on a 15 deg slope, lidar clock 12.7 ms late; a
+// Hesai-like head on a consumer IMU; the Livox-like rosette on a consumer IMU (chosen for their
+// sensors and, within a sensor, for the longer path per second of drive, not their results).
+INSTANTIATE_TEST_SUITE_P(Subset, ScenarioMatrix, ::testing::Values(1u, 5u, 11u),
                          [](const auto& info) { return "Scenario" + std::to_string(info.param); });
 
 }  // namespace
