@@ -11,8 +11,11 @@
 //   hylo_scenario_matrix [--scenarios 0-23] [--backends ieskf,sliding_window]
 //                        [--no-slam] [--no-localization] [--max-drive-a S] [--max-drive-b S]
 //                        [--explain] [--list] [--json PATH] [--preset-dir DIR] [--trace DIR]
+//                        [--ease FACTOR]...
 //                        [--variant NAME[@backend,...]:key=value[,key=value...]]...
 //                        [--no-default]
+// --ease FACTOR sets that factor to its easy value in every scenario (e.g. synchronised clocks
+// throughout), to measure how much of the matrix's error one factor accounts for.
 // A variant is a configuration to compare with the default on the same simulated data (every
 // variant's pipelines are fed by one simulation pass); keys: see kSettings below.
 
@@ -123,7 +126,8 @@ struct Args {
   bool slam = true, localization = true, explain = false, list = false;
   double max_drive_a_s = -1.0, max_drive_b_s = -1.0;
   std::string json_path = "scenario_matrix.json", preset_dir = HYLO_PRESET_DIR, trace_dir;
-  std::vector<Variant> variants = {Variant()};  // "default" first unless --no-default
+  std::vector<Variant> variants = {Variant()};   // "default" first unless --no-default
+  std::vector<hylo::sim::ScenarioFactor> eased;  // factors eased in every scenario
 };
 
 // "0-5,8,10-12" -> 0 1 2 3 4 5 8 10 11 12.
@@ -183,6 +187,19 @@ bool Parse(int argc, char** argv, Args* args) {
       args->preset_dir = argv[++i];
     } else if (a == "--trace" && has) {
       args->trace_dir = argv[++i];
+    } else if (a == "--ease" && has) {
+      bool known = false;
+      for (const hylo::sim::ScenarioFactor factor : hylo::sim::AllScenarioFactors()) {
+        if (ToString(factor) == argv[i + 1]) {
+          args->eased.push_back(factor);
+          known = true;
+        }
+      }
+      if (!known) {
+        std::fprintf(stderr, "--ease: unknown factor '%s'\n", argv[i + 1]);
+        return false;
+      }
+      ++i;
     } else if (a == "--variant" && has) {
       Variant variant;
       if (!ParseVariant(argv[++i], &variant)) {
@@ -219,6 +236,7 @@ hylo::sim::Scenario Drawn(uint64_t number, const Args& args) {
   hylo::sim::Scenario s = hylo::sim::DrawScenario(number);
   if (args.max_drive_a_s > 0) s.max_drive_a_s = args.max_drive_a_s;
   if (args.max_drive_b_s > 0) s.max_drive_b_s = args.max_drive_b_s;
+  for (const hylo::sim::ScenarioFactor factor : args.eased) s = Eased(s, factor);
   return s;
 }
 
@@ -328,6 +346,30 @@ std::string Percent(double value) {
   return text;
 }
 
+// What the worst scenario of a row is and what its error looks like: the drift's horizontal
+// part points at heading or scale, its vertical part at tilt or gravity; degenerate scans at
+// the geometry. (--explain tells which scenario factor made it worst.)
+void PrintWorst(const std::vector<ScenarioFigures>& all, std::size_t run_index, bool slam,
+                uint64_t number) {
+  for (const ScenarioFigures& f : all) {
+    if (f.number != number || run_index >= f.runs.size()) continue;
+    const BackendFigures& run = f.runs[run_index];
+    const ModeFigures& m = Mode(run, slam);
+    std::printf("  worst %s %s: #%llu %s: ", hylo::estimation::ToString(run.backend).c_str(),
+                slam ? "SLAM" : "localization", static_cast<unsigned long long>(number),
+                f.summary.c_str());
+    if (m.failed) {
+      std::printf("FAILED: %s\n", m.message.c_str());
+    } else {
+      std::printf(
+          "ATE %.2f cm (max %.2f), rotation %.2f deg, end drift %.3f %% of %.0f m "
+          "(horizontal %.3f m, vertical %+.3f m), %zu of %zu scans degenerate\n",
+          100 * m.ate_m, 100 * m.ate_max_m, m.rotation_rmse_deg, m.end_drift_percent, m.path_m,
+          m.end_drift_xy_m, m.end_drift_z_m, m.degenerate, m.scans);
+    }
+  }
+}
+
 hylo::io::Json PrintSummary(const std::vector<ScenarioFigures>& all, const Args& args) {
   hylo::io::Json summary = hylo::io::Json::object();
   std::printf(
@@ -354,6 +396,13 @@ hylo::io::Json PrintSummary(const std::vector<ScenarioFigures>& all, const Args&
         summary[runs[r].variant][name][slam ? "slam" : "localization"][parity_names[parity + 1]] =
             StatsJson(s, slam);
       }
+    }
+  }
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    for (const bool slam : {true, false}) {
+      if (slam ? !args.slam : !args.localization) continue;
+      const Stats s = Summarize(all, r, slam, -1);
+      if (s.count > 0) PrintWorst(all, r, slam, s.worst_number);
     }
   }
   std::fflush(stdout);
@@ -422,8 +471,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: hylo_scenario_matrix [--scenarios 0-23] [--backends ieskf,sliding_window] "
                  "[--no-slam] [--no-localization] [--max-drive-a S] [--max-drive-b S] "
-                 "[--explain] [--list] [--json PATH] [--preset-dir DIR] "
-                 "[--variant NAME:key=value[,...]]... [--no-default]\n");
+                 "[--explain] [--list] [--json PATH] [--preset-dir DIR] [--trace DIR] "
+                 "[--ease FACTOR]... [--variant NAME:key=value[,...]]... [--no-default]\n");
     return 2;
   }
   if (args.list) {  // what the scenarios are, without running them

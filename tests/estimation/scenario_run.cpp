@@ -181,11 +181,11 @@ void WriteTrace(const std::string& path, const PipelineRun& run,
     Eigen::Isometry3d T_true;
     if (!evaluation::InterpolatePose(truth, x.t_ns, &T_true)) continue;
     const Eigen::Isometry3d& T_est = run.finalized[i].T_world_body;
-    const Eigen::AngleAxisd error(T_true.linear().transpose() * T_est.linear());
-    out << 1e-9 * double(x.t_ns) << ' ' << T_est.translation().transpose() << ' '
-        << T_true.translation().transpose() << ' ' << (error.angle() * error.axis()).transpose()
-        << ' ' << x.accel_bias.transpose() << ' ' << x.gyro_bias.transpose() << ' '
-        << x.gravity_map.transpose() << '\n';
+    const Eigen::Quaterniond q_est(T_est.linear()), q_true(T_true.linear());
+    out << 1e-9 * double(x.t_ns - run.states.front().t_ns) << ' ' << T_est.translation().transpose()
+        << ' ' << q_est.coeffs().transpose() << ' ' << T_true.translation().transpose() << ' '
+        << q_true.coeffs().transpose() << ' ' << x.accel_bias.transpose() << ' '
+        << x.gyro_bias.transpose() << ' ' << x.gravity_map.transpose() << '\n';
   }
 }
 

@@ -40,8 +40,8 @@ struct ScenarioRunOptions {
   bool localization = true;
   double prior_voxel_m = 0.1;  ///< uniform sampling of the true-pose map before thinning, m
   /// Not empty: every run writes trace_<scenario>_<variant>_<backend>_<mode>.txt here, one line
-  /// per finalized state: t_s, estimated and true position (world, m), rotation error
-  /// Log(R_trueᵀ R_est) (rad), accel bias, gyro bias, gravity (map).
+  /// per finalized state: t_s, estimated position (world, m) and quaternion (x y z w), the
+  /// true ones, accel bias, gyro bias, gravity (map).
   std::string trace_dir;
 };
 
