@@ -89,12 +89,7 @@ SessionSummary ScenarioSimulator::Run(
     }
     const KinematicState state = motion_->StateAt(t);
     sink->OnImu(imu.Measure(state, start_ns_ + t));
-    TruthSample truth;
-    truth.t_ns = start_ns_ + t;
-    truth.T_map_imu.linear() = state.R_map_imu;
-    truth.T_map_imu.translation() = state.position_map;
-    truth.velocity_map = state.velocity_map;
-    sink->OnTruth(truth);
+    sink->OnTruth(TruthSample::Of(start_ns_ + t, state));
     ++summary.imu_samples;
   }
   while (next_scan < scans) emit_scan();
