@@ -11,9 +11,11 @@
 //   hylo_scenario_matrix [--scenarios 0-23] [--backends ieskf,sliding_window]
 //                        [--no-slam] [--no-localization] [--max-drive-a S] [--max-drive-b S]
 //                        [--explain] [--list] [--json PATH] [--preset-dir DIR] [--trace DIR]
-//                        [--ease FACTOR]...
+//                        [--ease FACTOR]... [--summarize JSON...]
 //                        [--variant NAME[@backend,...]:key=value[,key=value...]]...
 //                        [--no-default]
+// --summarize A.json B.json ... prints and summarizes earlier runs' scenarios as one run (a
+// matrix run in parts, e.g. --scenarios 0-11 and 12-23 on two cores), simulating nothing.
 // --ease FACTOR sets that factor to its easy value in every scenario (e.g. synchronised clocks
 // throughout), to measure how much of the matrix's error one factor accounts for.
 // A variant is a configuration to compare with the default on the same simulated data (every
@@ -25,6 +27,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -128,6 +131,7 @@ struct Args {
   std::string json_path = "scenario_matrix.json", preset_dir = HYLO_PRESET_DIR, trace_dir;
   std::vector<Variant> variants = {Variant()};   // "default" first unless --no-default
   std::vector<hylo::sim::ScenarioFactor> eased;  // factors eased in every scenario
+  std::vector<std::string> summarize;            // JSON files of earlier runs to summarize
 };
 
 // "0-5,8,10-12" -> 0 1 2 3 4 5 8 10 11 12.
@@ -200,6 +204,11 @@ bool Parse(int argc, char** argv, Args* args) {
         return false;
       }
       ++i;
+    } else if (a == "--summarize" && has) {
+      while (i + 1 < argc && std::strncmp(argv[i + 1], "--", 2) != 0) {
+        args->summarize.push_back(argv[++i]);
+      }
+      if (args->summarize.empty()) return false;
     } else if (a == "--variant" && has) {
       Variant variant;
       if (!ParseVariant(argv[++i], &variant)) {
@@ -463,6 +472,48 @@ hylo::io::Json Explain(const std::vector<ScenarioFigures>& all, const Args& args
   return j;
 }
 
+// --summarize: the scenarios of earlier runs' JSON files (e.g. one half of the matrix per
+// core), printed and summarized as one run, without simulating anything.
+int SummarizeFiles(const Args& args) {
+  std::vector<ScenarioFigures> all;
+  try {
+    for (const std::string& path : args.summarize) {
+      const hylo::io::Json j = hylo::io::ReadJsonFile(path);
+      if (!j.contains("scenarios") || !j.at("scenarios").is_array()) {
+        throw std::runtime_error(path + ": no 'scenarios' array");
+      }
+      for (const hylo::io::Json& s : j.at("scenarios")) {
+        all.push_back(hylo::testing::FromJson(s));
+      }
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "--summarize: %s\n", e.what());
+    return 1;
+  }
+  if (all.empty()) {
+    std::fprintf(stderr, "--summarize: no scenario in the files given\n");
+    return 1;
+  }
+  std::sort(all.begin(), all.end(),
+            [](const ScenarioFigures& a, const ScenarioFigures& b) { return a.number < b.number; });
+  for (std::size_t k = 1; k < all.size(); ++k) {
+    if (all[k].number == all[k - 1].number || all[k].runs.size() != all[0].runs.size()) {
+      std::fprintf(stderr, "--summarize: scenario %llu is twice in the files or ran other runs\n",
+                   static_cast<unsigned long long>(all[k].number));
+      return 1;
+    }
+  }
+  hylo::io::Json out = hylo::io::Json::object();
+  for (const ScenarioFigures& f : all) {
+    PrintScenario(f);
+    out["scenarios"].push_back(hylo::testing::ToJson(f));
+  }
+  out["summary"] = PrintSummary(all, args);
+  hylo::io::WriteJsonFile(args.json_path, out);
+  std::printf("\nJSON: %s\n", args.json_path.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -472,7 +523,8 @@ int main(int argc, char** argv) {
                  "usage: hylo_scenario_matrix [--scenarios 0-23] [--backends ieskf,sliding_window] "
                  "[--no-slam] [--no-localization] [--max-drive-a S] [--max-drive-b S] "
                  "[--explain] [--list] [--json PATH] [--preset-dir DIR] [--trace DIR] "
-                 "[--ease FACTOR]... [--variant NAME:key=value[,...]]... [--no-default]\n");
+                 "[--ease FACTOR]... [--summarize JSON...] [--variant NAME:key=value[,...]]... "
+                 "[--no-default]\n");
     return 2;
   }
   if (args.list) {  // what the scenarios are, without running them
@@ -482,6 +534,7 @@ int main(int argc, char** argv) {
     }
     return 0;
   }
+  if (!args.summarize.empty()) return SummarizeFiles(args);
   const hylo::testing::ScenarioRunOptions options = RunOptions(args);
   std::vector<ScenarioFigures> all;
   hylo::io::Json out = hylo::io::Json::object();

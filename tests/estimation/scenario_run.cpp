@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <memory>
+#include <stdexcept>
 
 #include "hylo/evaluation/trajectory_metrics.h"
 #include "hylo/mapping/prior_map.h"
@@ -333,7 +334,61 @@ io::Json ModeJson(const ModeFigures& f) {
   return j;
 }
 
+ModeFigures ModeFromJson(const io::Json& j) {
+  ModeFigures f;
+  f.ran = true;
+  f.failed = j.at("failed").get<bool>();
+  f.message = j.value("message", std::string());
+  // NaN is written as null (a failed run's figures).
+  const auto number = [&j](const char* key) {
+    const io::Json& v = j.at(key);
+    return v.is_null() ? std::nan("") : v.get<double>();
+  };
+  f.ate_m = number("ate_m");
+  f.ate_max_m = number("ate_max_m");
+  f.rotation_rmse_deg = number("rotation_rmse_deg");
+  f.end_drift_m = number("end_drift_m");
+  f.end_drift_percent = number("end_drift_percent");
+  f.end_drift_xy_m = number("end_drift_xy_m");
+  f.end_drift_z_m = number("end_drift_z_m");
+  f.end_error_se3_m = number("end_error_se3_m");
+  f.path_m = number("path_m");
+  f.cpu_ms_median = number("cpu_ms_median");
+  f.cpu_ms_p99 = number("cpu_ms_p99");
+  f.scans = j.at("scans").get<std::size_t>();
+  f.not_applied = j.at("not_applied").get<std::size_t>();
+  f.degenerate = j.at("degenerate").get<std::size_t>();
+  return f;
+}
+
 }  // namespace
+
+ScenarioFigures FromJson(const io::Json& j) {
+  ScenarioFigures f;
+  try {
+    f.number = j.at("number").get<uint64_t>();
+    f.summary = j.at("summary").get<std::string>();
+    f.start_tilt_deg = j.at("start_tilt_deg").get<double>();
+    f.sim_cpu_s = j.at("sim_cpu_s").get<double>();
+    for (const auto& [variant, backends] : j.at("runs").items()) {
+      for (const auto& [name, modes] : backends.items()) {
+        BackendFigures run;
+        run.variant = variant;
+        if (!estimation::ParseBackend(name, &run.backend)) {
+          throw std::runtime_error("unknown back-end '" + name + "'");
+        }
+        if (modes.contains("slam")) run.slam = ModeFromJson(modes.at("slam"));
+        if (modes.contains("localization")) {
+          run.localization = ModeFromJson(modes.at("localization"));
+        }
+        f.runs.push_back(run);
+      }
+    }
+  } catch (const io::Json::exception& e) {
+    throw std::runtime_error("scenario " + std::to_string(f.number) + ": " + e.what());
+  }
+  return f;
+}
 
 io::Json ToJson(const ScenarioFigures& f) {
   io::Json j = io::Json::object();

@@ -82,5 +82,8 @@ struct ScenarioFigures {
 ScenarioFigures RunScenario(const sim::Scenario& scenario, const ScenarioRunOptions& options);
 
 io::Json ToJson(const ScenarioFigures& figures);
+/// ToJson's inverse, to summarize matrices run apart (e.g. one half per core). Throws
+/// std::runtime_error naming the scenario and key of a missing or malformed entry.
+ScenarioFigures FromJson(const io::Json& j);
 
 }  // namespace hylo::testing
