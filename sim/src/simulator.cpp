@@ -89,12 +89,7 @@ SessionSummary SessionSimulator::Run(
     }
     const KinematicState state = trajectory_.StateAt(t);
     sink->OnImu(imu.Measure(state, t0 + t));
-    TruthSample truth;
-    truth.t_ns = t0 + t;
-    truth.T_map_imu.linear() = state.R_map_imu;
-    truth.T_map_imu.translation() = state.position_map;
-    truth.velocity_map = state.velocity_map;
-    sink->OnTruth(truth);
+    sink->OnTruth(TruthSample::Of(t0 + t, state));
     ++summary.imu_samples;
   }
   for (; next_scan < scans; ++next_scan) {  // only when the IMU period does not divide

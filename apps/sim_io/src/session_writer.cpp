@@ -6,10 +6,12 @@
 #include <stdexcept>
 #include <vector>
 
+#include "file_sink.h"
 #include "hylo/common/time.h"
 #include "hylo/io/bag_writer.h"
 #include "hylo/io/trajectory_io.h"
 #include "hylo/sim_io/reference_outputs.h"
+#include "json_parts.h"
 
 namespace hylo::sim {
 namespace {
@@ -17,43 +19,6 @@ namespace {
 std::string Join(const std::string& dir, const std::string& name) {
   return (std::filesystem::path(dir) / name).string();
 }
-
-io::Json Vec(const Eigen::Vector3d& v) { return io::Json::array({v.x(), v.y(), v.z()}); }
-
-io::Json PoseJson(const Eigen::Isometry3d& T) {
-  io::Json j = io::Json::object();
-  const Eigen::Quaterniond q(T.linear());
-  j["translation_m"] = Vec(T.translation());
-  j["quaternion_xyzw"] = io::Json::array({q.x(), q.y(), q.z(), q.w()});
-  std::vector<double> m;
-  for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) m.push_back(T.matrix()(r, c));
-  }
-  j["matrix_row_major"] = io::Json(m);
-  return j;
-}
-
-class FileSink : public SessionSink {
- public:
-  explicit FileSink(const std::string& bag_path) : bag_(bag_path) {}
-  void OnImu(const ImuSample& s) override { bag_.WriteImu("/imu", s, "imu"); }
-  void OnScan(const LidarScan& s) override {
-    bag_.WriteScan("/points", s, io::PointTimeConvention::kVelodyne, "lidar");
-  }
-  void OnTruth(const TruthSample& t) override {
-    io::StampedPose pose;
-    pose.t_ns = t.t_ns;
-    pose.position = t.T_map_imu.translation();
-    pose.orientation = Eigen::Quaterniond(t.T_map_imu.linear()).normalized();
-    truth_.push_back(pose);
-  }
-  void Close() { bag_.Close(); }
-  const std::vector<io::StampedPose>& truth() const { return truth_; }
-
- private:
-  io::BagWriter bag_;
-  std::vector<io::StampedPose> truth_;
-};
 
 io::Json ManifestJson(const SimulationOptions& options, const SessionSummary& s,
                       const std::string& dir) {
@@ -113,7 +78,7 @@ SessionSummary WriteSession(const SimulationOptions& options, const Site& site, 
                             const std::function<void(std::size_t, std::size_t)>& progress) {
   std::filesystem::create_directories(dir);
   const SessionSimulator simulator(options, site, session);
-  FileSink sink(SessionBagPath(dir, session));
+  FileSink sink(SessionBagPath(dir, session), BagLayout());
   const SessionSummary summary = simulator.Run(&sink, progress);
   sink.Close();
   io::WriteTum(SessionTruthPath(dir, session), sink.truth());

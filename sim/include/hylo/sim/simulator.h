@@ -47,6 +47,16 @@ struct TruthSample {
   int64_t t_ns = 0;
   Eigen::Isometry3d T_map_imu = Eigen::Isometry3d::Identity();
   Eigen::Vector3d velocity_map = Eigen::Vector3d::Zero();  ///< m/s
+
+  /// The truth of a motion's state at `t_ns`.
+  static TruthSample Of(int64_t t_ns, const KinematicState& state) {
+    TruthSample truth;
+    truth.t_ns = t_ns;
+    truth.T_map_imu.linear() = state.R_map_imu;
+    truth.T_map_imu.translation() = state.position_map;
+    truth.velocity_map = state.velocity_map;
+    return truth;
+  }
 };
 
 /// Receives a session's data in arrival order (a scan after the IMU samples before its end).

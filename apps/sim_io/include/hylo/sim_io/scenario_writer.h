@@ -1,0 +1,44 @@
+#pragma once
+// A randomized scenario (hylo/sim/scenario.h) as files, and the run configuration a user
+// would write for it:
+//   session_<a|b>.bag         IMU and lidar on the preset's topics, the lidar driver's
+//                             per-point time layout, the IMU driver's acceleration units
+//   session_<a|b>_truth.tum   T_map_imu at every IMU stamp
+//   session_<a|b>.json        manifest: the scenario's every drawn figure and the counts
+//   sensor_sheet.yaml         what a user knows (SensorSheet)
+//   config.yaml               config/<preset>.yaml with the sheet's values (ScenarioRunConfig)
+// The same scenario number gives the same bytes.
+
+#include <functional>
+#include <string>
+
+#include "hylo/config/run_config.h"
+#include "hylo/io/json.h"
+#include "hylo/sim/scenario.h"
+#include "hylo/sim/simulator.h"
+
+namespace hylo::sim {
+
+/// `config_dir`/<sheet.preset>.yaml with the sheet's extrinsic, IMU rate and IMU noise, and
+/// no dense map output (map_dense.pcd is for crafting, not odometry). The sheet's clock
+/// offset has no configuration key: ApplyClockOffset corrects the stamps instead.
+/// Throws config::ConfigError naming the preset file when it cannot be read.
+config::RunConfig ScenarioRunConfig(const SensorSheet& sheet, const std::string& config_dir);
+
+/// Moves a scan stamped on the lidar clock onto the IMU's, by the sheet's offset.
+void ApplyClockOffset(const SensorSheet& sheet, LidarScan* scan);
+
+/// Every drawn figure of `scenario` (site recipe, sensor, IMU grade, mounting, motion).
+io::Json ScenarioToJson(const Scenario& scenario);
+
+/// Simulates `session` of `scenario` and writes its bag (laid out as `config` reads it),
+/// truth and manifest into `dir` (created if missing). Throws naming the file on I/O errors.
+SessionSummary WriteScenarioSession(
+    const Scenario& scenario, const Site& site, SessionId session, const config::RunConfig& config,
+    const std::string& dir, const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+/// Writes sensor_sheet.yaml and config.yaml into `dir`.
+void WriteScenarioSheet(const SensorSheet& sheet, const config::RunConfig& config,
+                        const std::string& dir);
+
+}  // namespace hylo::sim
