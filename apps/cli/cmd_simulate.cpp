@@ -158,10 +158,12 @@ void AddSimulateCommand(CLI::App& root) {
   auto* lidar = cmd->add_option("--lidar", args.lidar, "beam table: vlp16 or rs16");
   auto* column = cmd->add_option("--column-deg", args.column_deg, "azimuth step (default 0.2 deg)")
                      ->check(CLI::PositiveNumber);
-  auto* offset = cmd->add_option("--lidar-time-offset", args.lidar_time_offset_s,
-                  "lidar clock behind the IMU's by S seconds: t_imu = t_lidar + S, corrected by "
-                  "lidar.time_offset_s: S (default 0)")
-      ->check(CLI::Range(-1.0, 1.0));
+  auto* offset =
+      cmd->add_option(
+             "--lidar-time-offset", args.lidar_time_offset_s,
+             "lidar clock behind the IMU's by S seconds: t_imu = t_lidar + S, corrected by "
+             "lidar.time_offset_s: S (default 0)")
+          ->check(CLI::Range(-1.0, 1.0));
   cmd->add_option("--reference-spacing", args.site_output.reference_spacing_m,
                   "object sampling of the reference cloud, m");
   cmd->add_flag("--no-site", args.skip_site, "skip the reference cloud and slope grid");

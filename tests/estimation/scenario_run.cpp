@@ -47,17 +47,14 @@ struct TruthTrack : sim::SessionSink {
   std::vector<TimedPose> poses;
 };
 
-// A pipeline fed as a user's run would be: lidar stamps moved by the sheet's clock offset.
+// A pipeline fed as a user's run would be (the configuration carries the sheet's clock offset).
 // Finalized poses go back to the world frame (a prior map's local origin added).
 class PipelineRun : public sim::SessionSink {
  public:
-  PipelineRun(const estimation::OdometryPipelineOptions& options, const sim::SensorSheet& sheet)
-      : pipeline(options), sheet_(sheet) {}
+  explicit PipelineRun(const estimation::OdometryPipelineOptions& options) : pipeline(options) {}
   void OnImu(const ImuSample& s) override { pipeline.AddImu(s); }
   void OnScan(const LidarScan& s) override {
-    LidarScan scan = s;
-    sim::ApplyClockOffset(sheet_, &scan);
-    pipeline.AddScan(std::move(scan));
+    pipeline.AddScan(s);
     Consume(false);
   }
   void OnTruth(const sim::TruthSample&) override {}
@@ -82,8 +79,6 @@ class PipelineRun : public sim::SessionSink {
       states.push_back(x);
     }
   }
-
-  sim::SensorSheet sheet_;
 };
 
 // The mapping drive's scans placed at their true poses (each return at its own time, to
@@ -252,7 +247,7 @@ ScenarioFigures RunScenario(const sim::Scenario& scenario, const ScenarioRunOpti
   std::vector<std::unique_ptr<PipelineRun>> slam;
   if (options.slam) {
     each_run([&](const Variant& variant, Estimator::Backend backend) {
-      slam.push_back(std::make_unique<PipelineRun>(OptionsFor(config, backend, variant), sheet));
+      slam.push_back(std::make_unique<PipelineRun>(OptionsFor(config, backend, variant)));
       tee_a.Add(slam.back().get());
     });
   }
@@ -289,8 +284,7 @@ ScenarioFigures RunScenario(const sim::Scenario& scenario, const ScenarioRunOpti
   tee_b.Add(&truth_b);
   std::vector<std::unique_ptr<PipelineRun>> localization;
   each_run([&](const Variant& variant, Estimator::Backend backend) {
-    localization.push_back(
-        std::make_unique<PipelineRun>(OptionsFor(config, backend, variant), sheet));
+    localization.push_back(std::make_unique<PipelineRun>(OptionsFor(config, backend, variant)));
     PipelineRun& run = *localization.back();
     run.origin_world = map.origin_world;
     run.pipeline.SetPriorMap(map.points_local);

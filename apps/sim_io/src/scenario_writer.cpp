@@ -80,6 +80,8 @@ config::RunConfig ScenarioRunConfig(const SensorSheet& sheet, const std::string&
   imu.noise.accel_noise_density = sheet.accel_noise_density;
   imu.noise.gyro_bias_random_walk = sheet.gyro_bias_random_walk;
   imu.noise.accel_bias_random_walk = sheet.accel_bias_random_walk;
+  // The sheet gives t_lidar - t_imu of one instant; the pipeline moves scans by t_imu - t_lidar.
+  config.pipeline.lidar.time_offset_s = -sheet.lidar_time_offset_s;
   config.pipeline.output.dense_map_voxel_m = 0.0;
   std::string why;
   if (!config.IsValid(&why)) {
@@ -87,12 +89,6 @@ config::RunConfig ScenarioRunConfig(const SensorSheet& sheet, const std::string&
                               sheet.preset + ": " + why);
   }
   return config;
-}
-
-void ApplyClockOffset(const SensorSheet& sheet, LidarScan* scan) {
-  const int64_t offset_ns = std::llround(sheet.lidar_time_offset_s * 1e9);
-  scan->t_ns -= offset_ns;
-  scan->end_t_ns -= offset_ns;
 }
 
 io::Json ScenarioToJson(const Scenario& s) {

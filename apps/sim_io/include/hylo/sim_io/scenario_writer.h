@@ -19,14 +19,11 @@
 
 namespace hylo::sim {
 
-/// `config_dir`/<sheet.preset>.yaml with the sheet's extrinsic, IMU rate and IMU noise, and
-/// no dense map output (map_dense.pcd is for crafting, not odometry). The sheet's clock
-/// offset has no configuration key: ApplyClockOffset corrects the stamps instead.
+/// `config_dir`/<sheet.preset>.yaml with the sheet's extrinsic, IMU rate, IMU noise and clock
+/// offset (lidar.time_offset_s), and no dense map output (map_dense.pcd is for crafting, not
+/// odometry).
 /// Throws config::ConfigError naming the preset file when it cannot be read.
 config::RunConfig ScenarioRunConfig(const SensorSheet& sheet, const std::string& config_dir);
-
-/// Moves a scan stamped on the lidar clock onto the IMU's, by the sheet's offset.
-void ApplyClockOffset(const SensorSheet& sheet, LidarScan* scan);
 
 /// Every drawn figure of `scenario` (site recipe, sensor, IMU grade, mounting, motion).
 io::Json ScenarioToJson(const Scenario& scenario);
