@@ -37,13 +37,13 @@ io::Json EventsJson(const std::vector<estimation::LocalizationEvent>& events,
     const Eigen::Matrix3d& R = e.T_map_imu.linear();
     j["yaw_deg"] = std::atan2(R(1, 0), R(0, 0)) * 180.0 / M_PI;
     if (std::isfinite(e.fitness_m2)) j["fitness_m2"] = e.fitness_m2;
+    if (std::isfinite(e.plane_fitness_m2)) j["plane_fitness_m2"] = e.plane_fitness_m2;
     j["inlier_ratio"] = e.inlier_ratio;
     j["message"] = e.message;
     array.push_back(j);
   }
   return array;
 }
-
 
 // The paper's cloud-to-cloud metric: the registered scans against the prior map.
 io::Json CloudToCloudJson(const PointCloud& registered_map, const PointCloud& prior_map,

@@ -59,8 +59,9 @@ struct OdometryPipelineOptions {
 
 class OdometryPipeline {
  public:
-  /// kInitializing: IMU at rest / ICP initializer; kRunning; kLost: running, but health was
-  /// bad for lost_after_scans scans and a relocalization is pending; kFailed: see message().
+  /// kInitializing: IMU at rest / ICP initializer / searching while moving (no pose in the
+  /// map yet: no results); kRunning; kLost: running, but health was bad for lost_after_scans
+  /// scans and a relocalization is pending; kFailed: see message().
   enum class Status { kInitializing, kRunning, kLost, kFailed };
 
   /// Throws hylo::InternalError naming the field when `options` is not valid.
@@ -80,6 +81,9 @@ class OdometryPipeline {
   /// Relocalize around `T_map_imu_guess` with the next scan (e.g. ROS /initialpose). Before
   /// the start it replaces the initial guess. Needs a prior map.
   void RequestRelocalization(const Eigen::Isometry3d& T_map_imu_guess);
+  /// Forget the pose and search the whole prior map (LocalizationSupervisor::
+  /// RequestGlobalLocalization). False with *why without a prior map or a global map.
+  bool RequestGlobalLocalization(std::string* why);
   /// True when SetInitialGuess was called (localization in a prior map).
   bool localizing() const { return supervisor_ != nullptr; }
   /// Start, loss, relocalization and hybrid events in time order.
@@ -122,7 +126,7 @@ class OdometryPipeline {
   std::unique_ptr<Estimator> estimator_;
   mapping::MapManager map_;
   registration::PlaneMatcher matcher_;
-  std::unique_ptr<LocalizationSupervisor> supervisor_;  // null in SLAM
+  std::unique_ptr<LocalizationSupervisor> supervisor_;   // null in SLAM
   std::unique_ptr<registration::GlobalMap> global_map_;  // the prior's raster; null: none
   std::string global_map_unavailable_;                   // ... and why
   TwistEstimator twist_;
