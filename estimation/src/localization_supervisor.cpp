@@ -23,6 +23,11 @@ Eigen::Isometry3d ToIsometry(const lie::SE3d& T) {
   return iso;
 }
 
+registration::IcpInitializerOptions WithoutPlaneSteps(registration::IcpInitializerOptions icp) {
+  icp.plane_refine_iterations = 0;
+  return icp;
+}
+
 }  // namespace
 
 bool ImuAtRest(const std::vector<ImuSample>& imu, const NavState& imu_start,
@@ -50,6 +55,7 @@ LocalizationSupervisor::LocalizationSupervisor(
     : options_(options),
       uncertainty_(uncertainty),
       icp_initializer_(options.icp),
+      sweep_initializer_(WithoutPlaneSteps(options.icp)),
       global_localizer_(options.global, options.icp),
       global_map_(global_map),
       global_map_unavailable_(global_map_unavailable),
@@ -189,7 +195,7 @@ bool LocalizationSupervisor::Relocalize(const PointCloud& sweep_imu,
   const NavState before = estimator->state();
   ++scans_initializer_;
   registration::IcpInitializerResult icp =
-      icp_initializer_.Initialize(sweep_imu, map, T_map_imu_guess);
+      sweep_initializer_.Initialize(sweep_imu, map, T_map_imu_guess);
   std::string verdict = icp.message;
   if (!icp.accepted && allow_global && options_.global_enabled && global_map_ != nullptr) {
     // Not near the last pose (kidnapped, or lost for long): search the whole map, levelled
