@@ -23,6 +23,11 @@ Eigen::Isometry3d ToIsometry(const lie::SE3d& T) {
   return iso;
 }
 
+registration::IcpInitializerOptions WithoutPlaneSteps(registration::IcpInitializerOptions icp) {
+  icp.plane_refine_iterations = 0;
+  return icp;
+}
+
 }  // namespace
 
 bool ImuAtRest(const std::vector<ImuSample>& imu, const NavState& imu_start,
@@ -44,17 +49,22 @@ bool ImuAtRest(const std::vector<ImuSample>& imu, const NavState& imu_start,
 LocalizationSupervisor::LocalizationSupervisor(
     const LocalizationOptions& options, const InitialUncertainty& uncertainty,
     const std::optional<Eigen::Isometry3d>& T_map_imu_guess,
-    const registration::GlobalMap* global_map, const std::string& global_map_unavailable)
+    const registration::GlobalMap* global_map, const std::string& global_map_unavailable,
+    const mapping::MapManagerOptions& search_map,
+    const registration::PlaneMatcherOptions& search_planes)
     : options_(options),
       uncertainty_(uncertainty),
       icp_initializer_(options.icp),
+      sweep_initializer_(WithoutPlaneSteps(options.icp)),
       global_localizer_(options.global, options.icp),
       global_map_(global_map),
       global_map_unavailable_(global_map_unavailable),
-      guess_(T_map_imu_guess) {}
+      guess_(T_map_imu_guess),
+      search_map_(search_map),
+      search_planes_(search_planes) {}
 
 void LocalizationSupervisor::RequestRelocalization(const Eigen::Isometry3d& T_map_imu_guess) {
-  if (!started_) {
+  if (!started_ && !searching()) {
     guess_ = T_map_imu_guess;  // the start uses it
     return;
   }
@@ -76,8 +86,8 @@ bool LocalizationSupervisor::Start(NavState start, bool gravity_known,
     // Roll and pitch from gravity, yaw and position from the user's guess.
     const Eigen::Vector3d up_imu = start.R_map_imu.Matrix().transpose() * Eigen::Vector3d::UnitZ();
     if (guess) {
-      guess = registration::GuessFromGravity(guess->translation(), YawOf(guess->rotation()),
-                                             up_imu);
+      guess =
+          registration::GuessFromGravity(guess->translation(), YawOf(guess->rotation()), up_imu);
     }
     start.t_ns = static_.imu_end_t_ns;
   }
@@ -94,7 +104,17 @@ bool LocalizationSupervisor::Start(NavState start, bool gravity_known,
     verdict = "no guess and global localization is disabled (localization.global_enabled)";
   }
   const int scans = static_.scans;
+  const PointCloud static_points_imu = std::move(static_.points_imu);
   static_ = StaticScans();
+  if (!icp.accepted && options_.global_enabled && CanSearch()) {
+    // Ambiguous or not found: no pose is picked; the vehicle searches while it moves.
+    start.p_map_imu.setZero();
+    start.v_map_imu.setZero();
+    estimator->Initialize(start, uncertainty_.SlamCovariance());
+    BeginSearch(start, static_points_imu, /*is_start=*/true, verdict);
+    *why = "no start pose yet (" + std::to_string(scans) + " static scans): " + verdict;
+    return false;
+  }
   if (!icp.accepted) {
     *why = "no start pose (" + std::to_string(scans) + " static scans): " + verdict;
     AddEvent(LocalizationEvent::Kind::kInitializationFailed, start.t_ns, verdict,
@@ -125,8 +145,7 @@ std::string LocalizationSupervisor::StartGlobally(const NavState& start, bool gr
       global_localizer_.Localize(static_.points_imu, R_level, *global_map_, map);
   if (r.status == registration::GlobalStatus::kAccepted) *icp = r.refinement;
   std::ostringstream os;
-  os << r.message << " (" << r.stats.nodes_scored << " search nodes, " << r.elapsed_s
-     << " s CPU)";
+  os << r.message << " (" << r.stats.nodes_scored << " search nodes, " << r.elapsed_s << " s CPU)";
   return os.str();
 }
 
@@ -163,6 +182,13 @@ void LocalizationSupervisor::Supervise(const std::function<PointCloud()>& sweep_
     AddEvent(LocalizationEvent::Kind::kLost, result->t_ns, os.str(),
              ToIsometry(result->state.T_map_imu()));
   }
+  if (global_request_) {
+    global_request_ = false;
+    relocalize_request_.reset();
+    BeginSearch(estimator->state(), sweep_imu(), /*is_start=*/false,
+                "global localization requested");
+    return;
+  }
   std::optional<Eigen::Isometry3d> guess;
   guess.swap(relocalize_request_);
   // A user's request is judged as given; only the search of a lost vehicle may go global.
@@ -181,12 +207,12 @@ void LocalizationSupervisor::Supervise(const std::function<PointCloud()>& sweep_
 
 bool LocalizationSupervisor::Relocalize(const PointCloud& sweep_imu,
                                         const registration::NeighborSearch& map,
-                                        const Eigen::Isometry3d& T_map_imu_guess,
-                                        bool allow_global, Estimator* estimator) {
+                                        const Eigen::Isometry3d& T_map_imu_guess, bool allow_global,
+                                        Estimator* estimator) {
   const NavState before = estimator->state();
   ++scans_initializer_;
   registration::IcpInitializerResult icp =
-      icp_initializer_.Initialize(sweep_imu, map, T_map_imu_guess);
+      sweep_initializer_.Initialize(sweep_imu, map, T_map_imu_guess);
   std::string verdict = icp.message;
   if (!icp.accepted && allow_global && options_.global_enabled && global_map_ != nullptr) {
     // Not near the last pose (kidnapped, or lost for long): search the whole map, levelled
@@ -240,6 +266,7 @@ void LocalizationSupervisor::AddEvent(LocalizationEvent::Kind kind, int64_t t_ns
   event.T_map_imu = T_map_imu;
   if (icp != nullptr) {
     event.fitness_m2 = icp->accepted ? icp->fitness_score_m2 : icp->best_fitness_score_m2;
+    event.plane_fitness_m2 = icp->accepted ? icp->plane_fitness_m2 : icp->best_plane_fitness_m2;
     event.inlier_ratio = icp->accepted ? icp->inlier_ratio : icp->best_inlier_ratio;
   }
   event.message = message;

@@ -104,6 +104,9 @@ const std::vector<LocalizationEvent>& OdometryPipeline::events() const {
 }
 
 OdometryPipeline::Status OdometryPipeline::status() const {
+  if (status_ == Status::kRunning && supervisor_ && supervisor_->searching()) {
+    return Status::kInitializing;  // no pose in the map yet
+  }
   if (status_ == Status::kRunning && supervisor_ && supervisor_->lost()) return Status::kLost;
   return status_;
 }
@@ -136,6 +139,10 @@ void OdometryPipeline::Process(std::vector<ScanResult>* results, bool flush) {
   if (flush && status_ == Status::kInitializing && supervisor_ && supervisor_->static_scans() > 0 &&
       imu_initializer_.status() == ImuInitializer::Status::kDone) {
     StartLocalization(MeasurementGroup());
+  }
+  if (flush && status_ == Status::kRunning && supervisor_ && supervisor_->searching()) {
+    Fail("no start pose: the log ended while searching (" + supervisor_->events().back().message +
+         ")");
   }
 }
 
@@ -193,7 +200,9 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
   result->deskew_ms = MsSince(start);
 
   const auto update_start = std::chrono::steady_clock::now();
-  result->update = estimator_->Update(scan.registration, matcher_);
+  const bool searching = supervisor_ && supervisor_->searching();
+  result->update =
+      estimator_->Update(scan.registration, searching ? supervisor_->search_matcher() : matcher_);
   result->update_ms = MsSince(update_start);
   ++counters_.scans_processed;
   if (!result->update.applied) ++counters_.scans_not_applied;
@@ -202,11 +211,26 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
   result->state = estimator_->state();
   result->pose_covariance = estimator_->PoseCovariance();
   result->health = EvaluateScanHealth(result->update, options_.localization);
+  const auto sweep_imu = [&] {
+    return Transformed(estimator_->state().T_imu_lidar, preprocessor_.Deskewed(scan, 0.0));
+  };
+  if (searching) {
+    // No pose in the map yet: the search-frame states and scans are not results.
+    std::string why;
+    const PointCloud map_points_search =
+        result->update.applied
+            ? Transformed(result->state.T_map_lidar(), scan.registration.points_lidar)
+            : PointCloud();
+    if (supervisor_->Search(sweep_imu(), map_points_search, map_, estimator_.get(), &why) ==
+        LocalizationSupervisor::SearchStep::kGaveUp) {
+      Fail(why);
+    }
+    std::vector<NavState> search_frame_states;
+    estimator_->TakeFinalized(&search_frame_states);
+    return false;
+  }
   if (supervisor_) {
     // Health, loss and relocalization may replace the estimator's pose.
-    const auto sweep_imu = [&] {
-      return Transformed(estimator_->state().T_imu_lidar, preprocessor_.Deskewed(scan, 0.0));
-    };
     supervisor_->Supervise(sweep_imu, map_, estimator_.get(), result);
     result->T_map_odom = supervisor_->T_map_odom();
   }

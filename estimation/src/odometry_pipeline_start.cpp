@@ -47,7 +47,8 @@ void OdometryPipeline::SetInitialGuess(const std::optional<Eigen::Isometry3d>& T
       options_.localization, options_.initial_uncertainty, T_map_imu_guess, global_map_.get(),
       global_map_.get() == nullptr && global_map_unavailable_.empty()
           ? "no prior map was given (SetPriorMap)"
-          : global_map_unavailable_);
+          : global_map_unavailable_,
+      options_.map, options_.planes);
 }
 
 void OdometryPipeline::RequestRelocalization(const Eigen::Isometry3d& T_map_imu_guess) {
@@ -56,6 +57,14 @@ void OdometryPipeline::RequestRelocalization(const Eigen::Isometry3d& T_map_imu_
     return;
   }
   supervisor_->RequestRelocalization(T_map_imu_guess);
+}
+
+bool OdometryPipeline::RequestGlobalLocalization(std::string* why) {
+  if (!supervisor_) {
+    *why = "no prior map (SLAM): nothing to localize in";
+    return false;
+  }
+  return supervisor_->RequestGlobalLocalization(why);
 }
 
 void OdometryPipeline::Fail(const std::string& why) {
@@ -152,12 +161,14 @@ void OdometryPipeline::StartLocalization(const MeasurementGroup& group) {
   x.T_imu_lidar = options_.T_imu_lidar;
   std::string why;
   // The start may look anywhere in a tiled prior (global hypotheses): tiles on demand.
+  // Searching while moving runs the estimator too, in its own frame (status() says
+  // kInitializing until a pose is accepted).
   map_.SetOnDemand(true);
   const bool started = supervisor_->Start(x, options_.imu.enabled, map_, estimator_.get(), &why);
   map_.SetOnDemand(false);
   if (!map_.prior_error().empty()) {
     Fail("prior map: " + map_.prior_error());
-  } else if (started) {
+  } else if (started || supervisor_->searching()) {
     status_ = Status::kRunning;
   } else {
     Fail(why);

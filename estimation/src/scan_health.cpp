@@ -22,7 +22,13 @@ bool LocalizationOptions::IsValid(std::string* why) const {
          CheckAtLeast("lost_after_scans", lost_after_scans, 1, "", why) &&
          CheckAtLeast("relocalize_retry_scans", relocalize_retry_scans, 1, "", why) &&
          CheckSection(icp, "icp", why) && CheckSection(global, "global", why) &&
-         CheckSection(global_map, "global_map", why);
+         CheckSection(global_map, "global_map", why) && CheckSection(search, "search", why);
+}
+
+bool MovingSearchOptions::IsValid(std::string* why) const {
+  return CheckPositive("retry_m", retry_m, why) &&
+         CheckNonNegative("max_distance_m", max_distance_m, why) &&
+         CheckPositive("voxel_m", voxel_m, why);
 }
 
 ScanHealth EvaluateScanHealth(const UpdateSummary& update, const LocalizationOptions& options) {
@@ -66,6 +72,8 @@ std::string ToString(LocalizationEvent::Kind kind) {
       return "left_map";
     case LocalizationEvent::Kind::kReenteredMap:
       return "reentered_map";
+    case LocalizationEvent::Kind::kSearching:
+      return "searching";
   }
   return "unknown";
 }

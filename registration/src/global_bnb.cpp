@@ -35,11 +35,11 @@ class Results {
   explicit Results(const BnbOptions& options) : options_(options) {}
 
   // True when no leaf scoring at most `bound` could enter.
-  bool Prunable(int bound) const {
-    if (static_cast<int>(kept_.size()) < options_.max_candidates) {
-      return bound < options_.min_score;
-    }
-    return bound <= kept_.back().score;
+  bool Prunable(int bound) const { return bound <= Cutoff(); }
+  // The largest bound that is prunable.
+  int Cutoff() const {
+    if (static_cast<int>(kept_.size()) < options_.max_candidates) return options_.min_score - 1;
+    return kept_.back().score;
   }
 
   void Insert(const BnbCandidate& c, const DiscreteScan& scan) {
@@ -61,8 +61,8 @@ class Results {
  private:
   bool Distinct(const BnbCandidate& a, const BnbCandidate& b, const DiscreteScan& scan) const {
     const double cells = std::hypot(a.x - b.x, a.y - b.y);
-    const double dyaw = std::remainder(scan.yaws_rad[a.yaw_index] - scan.yaws_rad[b.yaw_index],
-                                       2.0 * M_PI);
+    const double dyaw =
+        std::remainder(scan.yaws_rad[a.yaw_index] - scan.yaws_rad[b.yaw_index], 2.0 * M_PI);
     return cells > options_.distinct_cells || std::abs(dyaw) > options_.distinct_yaw_rad;
   }
 
@@ -101,11 +101,13 @@ class Search {
 
   const std::vector<BnbCandidate>& results() const { return results_.kept(); }
   std::size_t nodes_scored() const { return nodes_scored_; }
+  std::size_t columns_scored() const { return columns_scored_; }
 
  private:
   int Score(int yaw, int32_t x, int32_t y, int level) {
     ++nodes_scored_;
-    return ScoreNode(scan_, map_, yaw, x, y, level, options_.z_tolerance_m);
+    return ScoreNode(scan_, map_, yaw, x, y, level, options_.z_tolerance_m, results_.Cutoff(),
+                     &columns_scored_);
   }
 
   static void SortByBound(std::vector<Node>* nodes) {
@@ -141,6 +143,7 @@ class Search {
   const BnbOptions& options_;
   Results results_;
   std::size_t nodes_scored_ = 0;
+  std::size_t columns_scored_ = 0;
 };
 
 }  // namespace
@@ -177,6 +180,9 @@ DiscreteScan Discretize(const PointCloud& points_ground, const GlobalMapOptions&
       if (window[i] == 0) touched.push_back(i);
       window[i] |= uint64_t{1} << bin;
     }
+    // Window order is the map's row-major order: the lookups of one score then walk the
+    // raster's rows instead of jumping across it.
+    std::sort(touched.begin(), touched.end());
     std::vector<ScanColumn> columns;
     columns.reserve(touched.size());
     for (const std::size_t i : touched) {
@@ -184,17 +190,23 @@ DiscreteScan Discretize(const PointCloud& points_ground, const GlobalMapOptions&
                          static_cast<int32_t>(i / side) - half, window[i]});
       window[i] = 0;
     }
-    if (k == 0) {
-      for (const ScanColumn& column : columns) scan.total_voxels += __builtin_popcountll(column.bins);
+    std::vector<int> voxels_from(columns.size() + 1, 0);
+    for (std::size_t c = columns.size(); c-- > 0;) {
+      voxels_from[c] = voxels_from[c + 1] + __builtin_popcountll(columns[c].bins);
     }
+    if (k == 0) scan.total_voxels = voxels_from.front();
     scan.yaws_rad.push_back(yaw);
     scan.columns.push_back(std::move(columns));
+    scan.voxels_from.push_back(std::move(voxels_from));
   }
   return scan;
 }
 
-int ScoreNode(const DiscreteScan& scan, const GlobalMap& map, int yaw_index, int32_t x,
-              int32_t y, int level, double z_tolerance_m) {
+// The search's inner loop: with the POPCNT instruction where the CPU has it (a portable build
+// otherwise calls a library routine per column), chosen once at load time.
+__attribute__((target_clones("popcnt", "default"))) int ScoreNode(
+    const DiscreteScan& scan, const GlobalMap& map, int yaw_index, int32_t x, int32_t y, int level,
+    double z_tolerance_m, int cutoff, std::size_t* columns_scored) {
   const GlobalMap::Layout& layout = map.layout();
   const GlobalMap::Level& grid = map.level(level);
   const std::size_t node = static_cast<std::size_t>(y) * layout.width + x;
@@ -207,7 +219,15 @@ int ScoreNode(const DiscreteScan& scan, const GlobalMap& map, int yaw_index, int
   const int shift = lo - DiscreteScan::kGroundBin;
   const int32_t block = int32_t{1} << level;
   int score = 0;
-  for (const ScanColumn& column : scan.columns[static_cast<std::size_t>(yaw_index)]) {
+  const std::vector<ScanColumn>& columns = scan.columns[static_cast<std::size_t>(yaw_index)];
+  const std::vector<int>& voxels_from = scan.voxels_from[static_cast<std::size_t>(yaw_index)];
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    // Every 16 columns: stop once even all the rest cannot lift the score above the cutoff.
+    if ((c & 15) == 0 && score + voxels_from[c] <= cutoff) {
+      if (columns_scored != nullptr) *columns_scored += c;
+      return score + voxels_from[c];
+    }
+    const ScanColumn& column = columns[c];
     int32_t cx = x + column.dx, cy = y + column.dy;
     // A block starting left of (or below) the raster still overlaps it up to cx + block: the
     // block at 0 covers that overlap (a looser bound, never a smaller one).
@@ -218,14 +238,17 @@ int ScoreNode(const DiscreteScan& scan, const GlobalMap& map, int yaw_index, int
     if (occupied == 0) continue;
     score += __builtin_popcountll(ShiftRight(DilateDown(occupied, w), shift) & column.bins);
   }
+  if (columns_scored != nullptr) *columns_scored += columns.size();
   return score;
 }
 
 std::vector<BnbCandidate> BranchAndBound(const DiscreteScan& scan, const GlobalMap& map,
-                                         const BnbOptions& options, std::size_t* nodes_scored) {
+                                         const BnbOptions& options, std::size_t* nodes_scored,
+                                         std::size_t* columns_scored) {
   Search search(scan, map, options);
   search.Run();
   if (nodes_scored != nullptr) *nodes_scored = search.nodes_scored();
+  if (columns_scored != nullptr) *columns_scored = search.columns_scored();
   return search.results();
 }
 

@@ -16,12 +16,6 @@ namespace hylo::registration {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
-// The vehicle's own ground: the lower quarter of the points within this horizontal radius of
-// the sensor (a 16-beam sensor's lowest rings land 2-4 m away; nearby walls only add points
-// above the ground).
-constexpr double kGroundRadiusM = 4.0;
-constexpr double kGroundQuantile = 0.25;
-constexpr std::size_t kMinGroundPoints = 20;
 
 // The levelled scan relative to the vehicle's ground, filtered for the search. False when no
 // ground is seen near the vehicle.
@@ -31,19 +25,18 @@ bool PrepareScan(const PointCloud& scan_imu, const Eigen::Matrix3d& R_level_imu,
   const Eigen::Matrix3f R = R_level_imu.cast<float>();
   PointCloud levelled;
   levelled.reserve(scan_imu.size());
-  std::vector<float> near_z;
   for (const Eigen::Vector3f& p : scan_imu) {
     if (!p.allFinite()) continue;
     const Eigen::Vector3f q = R * p;
     const float range = q.norm();
     if (range < options.min_range_m || range > options.max_range_m) continue;
     levelled.push_back(q);
-    if (q.head<2>().norm() <= kGroundRadiusM) near_z.push_back(q.z());
   }
-  if (near_z.size() < kMinGroundPoints) return false;
-  const std::size_t k = static_cast<std::size_t>(kGroundQuantile * near_z.size());
-  std::nth_element(near_z.begin(), near_z.begin() + static_cast<std::ptrdiff_t>(k), near_z.end());
-  const float ground_z = near_z[k];
+  double ground_z_m = -options.sensor_height_m;
+  if (options.sensor_height_m <= 0.0 && !internal::GroundUnderSensor(levelled, &ground_z_m)) {
+    return false;
+  }
+  const float ground_z = static_cast<float>(ground_z_m);
   *sensor_height_m = -ground_z;
   PointCloud kept;
   kept.reserve(levelled.size());
@@ -83,6 +76,7 @@ bool GlobalLocalizerOptions::IsValid(std::string* why) const {
           FailOption("max_range_m", max_range_m, "must be > min_range_m", why)) &&
          (std::isfinite(ground_clearance_m) ||
           FailOption("ground_clearance_m", ground_clearance_m, "must be finite", why)) &&
+         CheckNonNegative("sensor_height_m", sensor_height_m, why) &&
          CheckNonNegative("z_tolerance_m", z_tolerance_m, why) &&
          CheckInRange("yaw_step_deg", yaw_step_deg, 0.0, 90.0, why) &&
          CheckAtLeast("max_scan_points", max_scan_points, 10, "", why) &&
@@ -93,8 +87,10 @@ bool GlobalLocalizerOptions::IsValid(std::string* why) const {
          CheckPositive("distinct_yaw_deg", distinct_yaw_deg, why) &&
          ((refine_score_ratio > 0.0 && refine_score_ratio <= 1.0) ||
           FailOption("refine_score_ratio", refine_score_ratio, "must be in (0, 1]", why)) &&
+         CheckAtLeast("fine_hypotheses", fine_hypotheses, 1, "", why) &&
          CheckInRange("ambiguity_inlier_margin", ambiguity_inlier_margin, 0.0, 1.0, why) &&
-         CheckAtLeast("judge_max_points", judge_max_points, 50, "", why);
+         CheckAtLeast("judge_max_points", judge_max_points, 50, "", why) &&
+         CheckAtLeast("judge_icp_iterations", judge_icp_iterations, 1, "", why);
 }
 
 std::string ToString(GlobalStatus status) {
@@ -120,6 +116,10 @@ GlobalLocalizer::GlobalLocalizer(const GlobalLocalizerOptions& options,
   icp_.search_enabled = false;
   icp_judge_ = icp_;
   icp_judge_.fine_max_points = std::min(icp_.fine_max_points, options_.judge_max_points);
+  // The judge's fine ICP starts from the coarse ICP's result and hands over to the
+  // point-to-plane steps: it only has to settle into their basin, not converge to 0.1 mm.
+  icp_judge_.fine_icp.max_iterations =
+      std::min(icp_.fine_icp.max_iterations, options_.judge_icp_iterations);
   icp_judge_.min_source_points = std::min(icp_judge_.min_source_points, icp_judge_.fine_max_points);
 }
 
@@ -154,7 +154,7 @@ std::vector<GlobalHypothesis> GlobalLocalizer::Search(const PointCloud& scan_imu
   bnb.distinct_cells = options_.distinct_translation_m / map_options.cell_m;
   bnb.distinct_yaw_rad = options_.distinct_yaw_deg * kDegToRad;
   for (const internal::BnbCandidate& c :
-       internal::BranchAndBound(scan, global_map, bnb, &s.nodes_scored)) {
+       internal::BranchAndBound(scan, global_map, bnb, &s.nodes_scored, &s.columns_scored)) {
     GlobalHypothesis h;
     h.T_map_imu = PoseOf(c, scan.yaws_rad[static_cast<std::size_t>(c.yaw_index)], global_map,
                          R_level_imu, s.sensor_height_m);

@@ -6,6 +6,7 @@
 
 #include "global_bnb.h"
 #include "hylo/registration/global_localizer.h"
+#include "hylo/registration/icp.h"
 #include "hylo/registration/voxel_filter.h"
 #include "icp_initializer_internal.h"
 
@@ -24,7 +25,7 @@ std::string Describe(const GlobalHypothesis& h) {
   std::ostringstream os;
   const Eigen::Vector3d& t = h.T_refined.translation();
   os << "(" << t.x() << ", " << t.y() << ") score " << h.score << " inliers " << h.inlier_ratio
-     << " fitness " << h.fitness_m2;
+     << " plane fitness " << h.plane_fitness_m2 << " fitness " << h.fitness_m2;
   return os.str();
 }
 
@@ -70,20 +71,50 @@ GlobalLocalizationResult GlobalLocalizer::Localize(const PointCloud& scan_imu,
   const IcpInitializer judge(icp_judge_);
   // Every hypothesis refines the same cloud: thin it once, not once per hypothesis (the
   // initializer's own voxel filter then finds it already thinned).
-  const PointCloud scan_fine =
-      icp_.fine_voxel_m > 0.0 ? UniformSample(scan_imu, static_cast<float>(icp_.fine_voxel_m))
-                              : scan_imu;
-  std::vector<IcpInitializerResult> refinements(result.hypotheses.size());
+  const PointCloud scan_fine = icp_.fine_voxel_m > 0.0
+                                   ? UniformSample(scan_imu, static_cast<float>(icp_.fine_voxel_m))
+                                   : scan_imu;
+  // Coarse stage: each hypothesis scoring at least refine_score_ratio x the best is pulled in
+  // by the initializer's coarse ICP on a sparse cloud and ranked by the share of its points
+  // near the map; the best fine_hypotheses distinct ones are refined and gated.
+  const PointCloud scan_coarse = internal::Decimate(
+      UniformSample(scan_fine, static_cast<float>(icp_.coarse_voxel_m)), icp_.coarse_max_points);
+  const Icp coarse(icp_.coarse_icp);
+  std::vector<std::size_t> order;
   const double best_score = result.hypotheses.front().score;
   for (std::size_t i = 0; i < result.hypotheses.size(); ++i) {
     GlobalHypothesis& h = result.hypotheses[i];
     if (h.score < options_.refine_score_ratio * best_score) break;
-    refinements[i] = judge.Initialize(scan_fine, map, h.T_map_imu);
+    const IcpSummary s = coarse.Align(scan_coarse, map, h.T_map_imu);
+    if (s.status != IcpStatus::kConverged && s.status != IcpStatus::kMaxIterations) continue;
+    h.T_coarse = s.T_target_source;
+    h.coarse_inlier_ratio =
+        internal::MeasureOverlap(scan_coarse, map, h.T_coarse, icp_).inlier_ratio;
+    order.push_back(i);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return result.hypotheses[a].coarse_inlier_ratio > result.hypotheses[b].coarse_inlier_ratio;
+  });
+  std::vector<IcpInitializerResult> refinements(result.hypotheses.size());
+  std::vector<Eigen::Isometry3d> seen;
+  int refined = 0;
+  for (const std::size_t i : order) {
+    if (refined >= options_.fine_hypotheses) break;
+    GlobalHypothesis& h = result.hypotheses[i];
+    if (std::any_of(seen.begin(), seen.end(), [&](const Eigen::Isometry3d& T) {
+          return !Distinct(h.T_coarse, T, options_);
+        })) {
+      continue;
+    }
+    seen.push_back(h.T_coarse);
+    ++refined;
+    refinements[i] = judge.Initialize(scan_fine, map, h.T_coarse);
     const IcpInitializerResult& r = refinements[i];
     h.refined = true;
     h.passes = r.accepted;
-    h.T_refined = r.accepted ? r.T_map_imu : h.T_map_imu;
+    h.T_refined = r.accepted ? r.T_map_imu : r.best_T_map_imu;
     h.fitness_m2 = r.accepted ? r.fitness_score_m2 : r.best_fitness_score_m2;
+    h.plane_fitness_m2 = r.accepted ? r.plane_fitness_m2 : r.best_plane_fitness_m2;
     h.inlier_ratio = r.accepted ? r.inlier_ratio : r.best_inlier_ratio;
   }
 
@@ -93,9 +124,14 @@ GlobalLocalizationResult GlobalLocalizer::Localize(const PointCloud& scan_imu,
     if (result.hypotheses[i].passes) passing.push_back(i);
   }
   if (passing.empty()) {
-    const GlobalHypothesis& top = result.hypotheses.front();
-    return finish(GlobalStatus::kNotFound, "no place passed the ICP gates (top hypothesis " +
-                                               Describe(top) + ")");
+    const GlobalHypothesis* top = nullptr;
+    for (const GlobalHypothesis& h : result.hypotheses) {
+      if (h.refined && (top == nullptr || h.inlier_ratio > top->inlier_ratio)) top = &h;
+    }
+    return finish(GlobalStatus::kNotFound,
+                  top == nullptr
+                      ? "no hypothesis survived the coarse ICP"
+                      : "no place passed the ICP gates (best refined " + Describe(*top) + ")");
   }
   std::stable_sort(passing.begin(), passing.end(), [&](std::size_t a, std::size_t b) {
     return result.hypotheses[a].inlier_ratio > result.hypotheses[b].inlier_ratio;
@@ -110,22 +146,17 @@ GlobalLocalizationResult GlobalLocalizer::Localize(const PointCloud& scan_imu,
     }
   }
   result.num_passing = static_cast<int>(distinct.size());
-  if (distinct.size() > 1) {
-    return finish(GlobalStatus::kAmbiguous, std::to_string(distinct.size()) +
-                                                " distinct places pass the gates: " +
-                                                Describe(best) + " and more");
-  }
+  // Uniqueness: another place that explains nearly as much of the scan (passing the gates or
+  // not) makes the view ambiguous. A place that passes the gates but explains clearly less
+  // does not: on open gravel a wrong place's ground alone fits (and passes) wherever the
+  // structures leave a quarter of the scan unexplained.
   const GlobalHypothesis* runner_up = RunnerUp(result.hypotheses, best.T_refined, options_);
   if (runner_up != nullptr &&
       runner_up->inlier_ratio >= best.inlier_ratio - options_.ambiguity_inlier_margin) {
-    return finish(GlobalStatus::kAmbiguous,
-                  "two places fit nearly equally: " + Describe(best) + " vs " + Describe(*runner_up));
+    return finish(GlobalStatus::kAmbiguous, "two places fit nearly equally: " + Describe(best) +
+                                                " vs " + Describe(*runner_up));
   }
-  result.refinement = IcpInitializer(icp_).Initialize(scan_fine, map, best.T_refined);
-  if (!result.refinement.accepted) {
-    return finish(GlobalStatus::kNotFound, "the best place failed the gates with every scan "
-                                           "point: " + result.refinement.message);
-  }
+  result.refinement = refinements[passing.front()];
   result.T_map_imu = result.refinement.T_map_imu;
   return finish(GlobalStatus::kAccepted, Describe(best));
 }

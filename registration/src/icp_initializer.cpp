@@ -24,26 +24,22 @@ struct Candidate {
   bool passes = false;
 };
 
-// Every k-th point so that at most `max_points` remain: after a voxel filter the points are
-// already spread evenly, and a stride keeps that spread.
-PointCloud Decimate(const PointCloud& cloud, int max_points) {
-  const std::size_t limit = static_cast<std::size_t>(max_points);
-  if (cloud.size() <= limit) return cloud;
-  PointCloud kept;
-  kept.reserve(limit);
-  for (std::size_t i = 0; i < limit; ++i) kept.push_back(cloud[i * cloud.size() / limit]);
-  return kept;
-}
-
 bool IcpRanToResult(const IcpSummary& summary) {
   return summary.status == IcpStatus::kConverged || summary.status == IcpStatus::kMaxIterations;
 }
 
 std::string Describe(const internal::PoseQuality& q) {
   std::ostringstream os;
-  os << "fitness " << q.fitness_score_m2 << " m^2, inlier ratio " << q.inlier_ratio
-     << ", constraint " << q.constraint;
+  os << "plane fitness " << q.plane_fitness_m2 << " m^2, fitness " << q.fitness_score_m2
+     << " m^2, inlier ratio " << q.inlier_ratio << ", constraint " << q.constraint;
   return os.str();
+}
+
+bool PassesGates(const internal::PoseQuality& q, const IcpInitializerOptions& options) {
+  return q.plane_fitness_m2 < options.plane_fitness_threshold_m2 &&
+         (options.fitness_threshold_m2 <= 0.0 ||
+          q.fitness_score_m2 < options.fitness_threshold_m2) &&
+         q.inlier_ratio >= options.min_inlier_ratio && q.constraint >= options.min_constraint;
 }
 
 class Search {
@@ -52,23 +48,19 @@ class Search {
          const NeighborSearch& map, const Eigen::Isometry3d& T_guess)
       : options_(options), fine_source_(fine_source), map_(map), T_guess_(T_guess) {}
 
-  // Fine ICP from `T_start`, then every gate (the constraint only when the rest passes:
-  // it is the costly one).
+  // Fine ICP from `T_start`, then every gate.
   Candidate Refine(const Eigen::Isometry3d& T_start, int hypothesis) {
     ++tried_;
     Candidate c;
     c.hypothesis = hypothesis;
     const IcpSummary icp = Icp(options_.fine_icp).Align(fine_source_, map_, T_start);
     c.icp_ok = IcpRanToResult(icp);
-    c.T_map_imu = icp.T_target_source;
-    c.quality = internal::MeasureOverlap(fine_source_, map_, c.T_map_imu, options_);
-    const bool overlap = c.quality.fitness_score_m2 < options_.fitness_threshold_m2 &&
-                         c.quality.inlier_ratio >= options_.min_inlier_ratio;
-    if (c.icp_ok && overlap) {
-      c.quality.constraint = internal::ConstraintMeasure(fine_source_, map_, c.T_map_imu,
-                                                         options_.inlier_distance_m);
-      c.passes = c.quality.constraint >= options_.min_constraint;
-    }
+    c.T_map_imu = c.icp_ok ? internal::PlaneRefine(fine_source_, map_, icp.T_target_source,
+                                                   options_.inlier_distance_m,
+                                                   options_.plane_refine_iterations)
+                           : icp.T_target_source;
+    c.quality = internal::MeasureQuality(fine_source_, map_, c.T_map_imu, options_);
+    c.passes = c.icp_ok && PassesGates(c.quality, options_);
     return c;
   }
 
@@ -76,14 +68,14 @@ class Search {
   // (by inlier ratio) go through Refine.
   std::vector<Candidate> CoarseToFine(const std::vector<internal::Hypothesis>& hypotheses) {
     const PointCloud coarse_source =
-        Decimate(UniformSample(fine_source_, static_cast<float>(options_.coarse_voxel_m)),
-                 options_.coarse_max_points);
+        internal::Decimate(UniformSample(fine_source_, static_cast<float>(options_.coarse_voxel_m)),
+                           options_.coarse_max_points);
     const Icp coarse(options_.coarse_icp);
     std::vector<Candidate> coarse_results;
     for (std::size_t k = 0; k < hypotheses.size(); ++k) {
       ++tried_;
-      const IcpSummary icp = coarse.Align(
-          coarse_source, map_, internal::ApplyHypothesis(T_guess_, hypotheses[k]));
+      const IcpSummary icp =
+          coarse.Align(coarse_source, map_, internal::ApplyHypothesis(T_guess_, hypotheses[k]));
       if (!IcpRanToResult(icp)) continue;
       Candidate c;
       c.T_map_imu = icp.T_target_source;
@@ -131,10 +123,12 @@ void SetBest(const std::vector<Candidate>& candidates, IcpInitializerResult* res
   for (const Candidate& c : candidates) {
     if (c.quality.inlier_ratio > result->best_inlier_ratio ||
         (c.quality.inlier_ratio == result->best_inlier_ratio &&
-         c.quality.fitness_score_m2 < result->best_fitness_score_m2)) {
+         c.quality.plane_fitness_m2 < result->best_plane_fitness_m2)) {
       result->best_fitness_score_m2 = c.quality.fitness_score_m2;
+      result->best_plane_fitness_m2 = c.quality.plane_fitness_m2;
       result->best_inlier_ratio = c.quality.inlier_ratio;
       result->best_constraint = c.quality.constraint;
+      result->best_T_map_imu = c.T_map_imu;
     }
   }
 }
@@ -144,6 +138,7 @@ void Accept(const Candidate& c, const std::vector<internal::Hypothesis>& hypothe
   result->accepted = true;
   result->T_map_imu = c.T_map_imu;
   result->fitness_score_m2 = c.quality.fitness_score_m2;
+  result->plane_fitness_m2 = c.quality.plane_fitness_m2;
   result->inlier_ratio = c.quality.inlier_ratio;
   result->constraint = c.quality.constraint;
   result->accepted_hypothesis = c.hypothesis;
@@ -155,7 +150,7 @@ void Accept(const Candidate& c, const std::vector<internal::Hypothesis>& hypothe
   }
 }
 
-// The search's verdict: the lowest-fitness passing candidate, unless another distinct one
+// The search's verdict: the lowest-plane-fitness passing candidate, unless another distinct one
 // passes too (then the view is ambiguous and neither is trusted).
 void Decide(const std::vector<Candidate>& refined, const IcpInitializerOptions& options,
             const std::vector<internal::Hypothesis>& hypotheses, IcpInitializerResult* result) {
@@ -164,7 +159,7 @@ void Decide(const std::vector<Candidate>& refined, const IcpInitializerOptions& 
     if (c.passes) passing.push_back(&c);
   }
   std::sort(passing.begin(), passing.end(), [](const Candidate* a, const Candidate* b) {
-    return a->quality.fitness_score_m2 < b->quality.fitness_score_m2;
+    return a->quality.plane_fitness_m2 < b->quality.plane_fitness_m2;
   });
   int distinct = 0;
   for (const Candidate* c : passing) {
@@ -180,9 +175,10 @@ void Decide(const std::vector<Candidate>& refined, const IcpInitializerOptions& 
   result->num_accepted_distinct = distinct;
   std::ostringstream os;
   if (passing.empty()) {
-    os << "rejected: no hypothesis passed the gates (best: fitness "
-       << result->best_fitness_score_m2 << " m^2, inlier ratio " << result->best_inlier_ratio
-       << ", constraint " << result->best_constraint << ")";
+    os << "rejected: no hypothesis passed the gates (best: plane fitness "
+       << result->best_plane_fitness_m2 << " m^2, fitness " << result->best_fitness_score_m2
+       << " m^2, inlier ratio " << result->best_inlier_ratio << ", constraint "
+       << result->best_constraint << ")";
   } else if (distinct > 1 && options.reject_ambiguous) {
     os << "rejected: " << distinct << " distinct poses pass the gates (ambiguous view)";
   } else {
@@ -220,7 +216,8 @@ IcpInitializerResult IcpInitializer::Initialize(const PointCloud& scan_imu,
   const auto start = std::chrono::steady_clock::now();
   IcpInitializerResult result;
   result.T_map_imu = T_map_imu_guess;
-  const PointCloud fine_source = Decimate(
+  result.best_T_map_imu = T_map_imu_guess;
+  const PointCloud fine_source = internal::Decimate(
       UniformSample(FinitePoints(scan_imu), static_cast<float>(options_.fine_voxel_m)),
       options_.fine_max_points);
   result.num_source_points = fine_source.size();
@@ -245,8 +242,8 @@ IcpInitializerResult IcpInitializer::Initialize(const PointCloud& scan_imu,
   }
   SetBest({direct}, &result);
   if (!options_.search_enabled) {
-    result.message = "rejected: the guess failed (" + Describe(direct.quality) +
-                     ") and the search is disabled";
+    result.message =
+        "rejected: the guess failed (" + Describe(direct.quality) + ") and the search is disabled";
     return finish();
   }
   std::vector<Candidate> refined = search.CoarseToFine(hypotheses);

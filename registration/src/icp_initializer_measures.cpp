@@ -2,6 +2,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "hylo/common/check.h"
 #include "hylo/registration/plane_matcher.h"
@@ -12,11 +13,6 @@ namespace internal {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
-// Local plane for the constraint measure: 5 map neighbours (as FAST-LIO2's matcher) within
-// a metre, all within 10 cm of their plane.
-constexpr int kPlaneNeighbors = 5;
-constexpr float kPlaneRadiusM = 1.0f;
-constexpr double kPlanarityM = 0.1;
 
 // Offsets {0, +-step, +-2 step, ...} within +-range (0 alone when range is 0).
 std::vector<double> SymmetricSteps(double range, double step) {
@@ -29,6 +25,15 @@ std::vector<double> SymmetricSteps(double range, double step) {
 }
 
 }  // namespace
+
+PointCloud Decimate(const PointCloud& cloud, int max_points) {
+  const std::size_t limit = static_cast<std::size_t>(max_points);
+  if (cloud.size() <= limit) return cloud;
+  PointCloud kept;
+  kept.reserve(limit);
+  for (std::size_t i = 0; i < limit; ++i) kept.push_back(cloud[i * cloud.size() / limit]);
+  return kept;
+}
 
 std::vector<Hypothesis> MakeHypotheses(const IcpInitializerOptions& options) {
   const std::vector<double> yaws = SymmetricSteps(options.yaw_range_deg, options.yaw_step_deg);
@@ -67,32 +72,38 @@ Eigen::Isometry3d ApplyHypothesis(const Eigen::Isometry3d& T_map_imu_guess, cons
 PoseQuality MeasureOverlap(const PointCloud& source, const NeighborSearch& map,
                            const Eigen::Isometry3d& T_map_source,
                            const IcpInitializerOptions& options) {
-  PoseQuality quality;
-  quality.fitness_score_m2 =
-      FitnessScore(source, map, T_map_source, options.fitness_max_range_m).fitness_score;
-  quality.inlier_ratio =
-      FitnessScore(source, map, T_map_source, options.inlier_distance_m).inlier_ratio;
-  return quality;
-}
-
-double ConstraintMeasure(const PointCloud& source, const NeighborSearch& map,
-                         const Eigen::Isometry3d& T_map_source, double inlier_distance_m) {
-  std::vector<Eigen::Vector3d> points;
-  std::vector<Eigen::Vector3d> normals;
-  std::size_t num_finite = 0;
+  const double fitness_range_sq = options.fitness_max_range_m * options.fitness_max_range_m;
+  const double inlier_sq = options.inlier_distance_m * options.inlier_distance_m;
+  const float search_m =
+      static_cast<float>(std::max(options.fitness_max_range_m, options.inlier_distance_m));
+  std::size_t num_finite = 0, num_inliers = 0, num_fitness = 0;
+  double sum_sq = 0.0;
   std::vector<Neighbor> neighbors;
   for (const Eigen::Vector3f& p : source) {
     if (!p.allFinite()) continue;
     ++num_finite;
-    const Eigen::Vector3d q = T_map_source * p.cast<double>();
-    map.KNearest(q.cast<float>(), kPlaneNeighbors, kPlaneRadiusM, &neighbors);
-    if (neighbors.size() < static_cast<std::size_t>(kPlaneNeighbors)) continue;
-    if (neighbors.front().squared_distance > inlier_distance_m * inlier_distance_m) continue;
-    Plane plane;
-    if (!FitPlane(neighbors, kPlanarityM, &plane)) continue;
-    points.push_back(q);
-    normals.push_back(plane.normal);
+    map.KNearest((T_map_source * p.cast<double>()).cast<float>(), 1, search_m, &neighbors);
+    if (neighbors.empty()) continue;
+    const double d_sq = neighbors.front().squared_distance;
+    if (d_sq <= inlier_sq) ++num_inliers;
+    if (d_sq <= fitness_range_sq) {
+      sum_sq += d_sq;
+      ++num_fitness;
+    }
   }
+  PoseQuality quality;
+  quality.fitness_score_m2 = num_fitness > 0 ? sum_sq / static_cast<double>(num_fitness)
+                                             : std::numeric_limits<double>::infinity();
+  quality.inlier_ratio =
+      num_finite > 0 ? static_cast<double>(num_inliers) / static_cast<double>(num_finite) : 0.0;
+  return quality;
+}
+
+namespace {
+
+// Weakest eigenvalue of the normalised point-to-plane information (see MeasureQuality).
+double Constraint(const std::vector<Eigen::Vector3d>& points,
+                  const std::vector<Eigen::Vector3d>& normals, std::size_t num_finite) {
   if (points.size() < 6) return 0.0;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& q : points) centroid += q;
@@ -110,6 +121,65 @@ double ConstraintMeasure(const PointCloud& source, const NeighborSearch& map,
   information /= static_cast<double>(num_finite);
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> solver(information);
   return std::max(0.0, solver.eigenvalues()(0));
+}
+
+}  // namespace
+
+bool LocalPlane(const NeighborSearch& map, const Eigen::Vector3d& q_map, double max_nn_m,
+                std::vector<Neighbor>* neighbors, double* nn_squared_m2, Plane* plane) {
+  const float search_m = std::max(kPlaneRadiusM, static_cast<float>(max_nn_m));
+  map.KNearest(q_map.cast<float>(), kPlaneNeighbors, search_m, neighbors);
+  if (neighbors->empty()) return false;
+  *nn_squared_m2 = neighbors->front().squared_distance;
+  if (*nn_squared_m2 > max_nn_m * max_nn_m) return false;
+  // The plane of the neighbours within kPlaneRadiusM (the search may reach farther).
+  while (!neighbors->empty() &&
+         neighbors->back().squared_distance > kPlaneRadiusM * kPlaneRadiusM) {
+    neighbors->pop_back();
+  }
+  return neighbors->size() == static_cast<std::size_t>(kPlaneNeighbors) &&
+         FitPlane(*neighbors, kPlanarityM, plane);
+}
+
+PoseQuality MeasureQuality(const PointCloud& source, const NeighborSearch& map,
+                           const Eigen::Isometry3d& T_map_source,
+                           const IcpInitializerOptions& options) {
+  const double fitness_range_sq = options.fitness_max_range_m * options.fitness_max_range_m;
+  const double inlier_sq = options.inlier_distance_m * options.inlier_distance_m;
+  // One search reaches every measure's range (the plane's only for the inliers).
+  const double reach_m = std::max(options.fitness_max_range_m, options.inlier_distance_m);
+  std::size_t num_finite = 0, num_inliers = 0, num_fitness = 0;
+  double sum_sq = 0.0, plane_sum_sq = 0.0;
+  std::vector<Eigen::Vector3d> points, normals;  // inliers with a local plane
+  std::vector<Neighbor> neighbors;
+  for (const Eigen::Vector3f& p : source) {
+    if (!p.allFinite()) continue;
+    ++num_finite;
+    const Eigen::Vector3d q = T_map_source * p.cast<double>();
+    double d_sq = std::numeric_limits<double>::infinity();
+    Plane plane;
+    const bool has_plane = LocalPlane(map, q, reach_m, &neighbors, &d_sq, &plane);
+    if (d_sq <= fitness_range_sq) {
+      sum_sq += d_sq;
+      ++num_fitness;
+    }
+    if (d_sq > inlier_sq) continue;
+    ++num_inliers;
+    if (!has_plane) continue;
+    const double r = plane.Distance(q);
+    plane_sum_sq += r * r;
+    points.push_back(q);
+    normals.push_back(plane.normal);
+  }
+  PoseQuality quality;
+  quality.fitness_score_m2 = num_fitness > 0 ? sum_sq / static_cast<double>(num_fitness)
+                                             : std::numeric_limits<double>::infinity();
+  quality.plane_fitness_m2 =
+      points.empty() ? 1.0 : plane_sum_sq / static_cast<double>(points.size());
+  quality.inlier_ratio =
+      num_finite > 0 ? static_cast<double>(num_inliers) / static_cast<double>(num_finite) : 0.0;
+  quality.constraint = Constraint(points, normals, num_finite);
+  return quality;
 }
 
 bool AreDistinct(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double translation_m,

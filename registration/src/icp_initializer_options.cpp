@@ -28,8 +28,11 @@ IcpInitializerOptions::IcpInitializerOptions() {
 bool IcpInitializerOptions::IsValid(std::string* why) const {
   std::ostringstream os;
   std::string icp_why;
-  if (!Positive(fitness_threshold_m2)) {
-    os << "fitness_threshold_m2 = " << fitness_threshold_m2 << ": must be finite and > 0";
+  if (!Positive(plane_fitness_threshold_m2)) {
+    os << "plane_fitness_threshold_m2 = " << plane_fitness_threshold_m2
+       << ": must be finite and > 0";
+  } else if (!(fitness_threshold_m2 >= 0.0) || !std::isfinite(fitness_threshold_m2)) {
+    os << "fitness_threshold_m2 = " << fitness_threshold_m2 << ": must be finite and >= 0";
   } else if (!Positive(fitness_max_range_m)) {
     os << "fitness_max_range_m = " << fitness_max_range_m << ": must be finite and > 0";
   } else if (!Positive(inlier_distance_m)) {
@@ -47,6 +50,8 @@ bool IcpInitializerOptions::IsValid(std::string* why) const {
        << min_source_points << ")";
   } else if (coarse_max_points < 3) {
     os << "coarse_max_points = " << coarse_max_points << ": must be >= 3";
+  } else if (plane_refine_iterations < 0) {
+    os << "plane_refine_iterations = " << plane_refine_iterations << ": must be >= 0";
   } else if (!fine_icp.IsValid(&icp_why)) {
     os << "fine_icp." << icp_why;
   } else if (!(yaw_range_deg >= 0.0 && yaw_range_deg <= 180.0)) {

@@ -1,7 +1,7 @@
 // ICP initializer on synthetic scenes (ground, walls, boxes): acceptance from a near guess,
 // recovery by the search from a far one, and every rejection path: empty / NaN input, empty
 // map, a flat plane (yaw and x/y unobservable), a partial overlap whose fitness alone would
-// pass, invalid options.
+// pass, a sparse map that the plane fitness gate does not mind, invalid options.
 #include "hylo/registration/icp_initializer.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +13,8 @@
 #include "hylo/common/check.h"
 #include "hylo/mapping/ikd_tree.h"
 #include "hylo/registration/brute_force_search.h"
+#include "hylo/registration/voxel_filter.h"
+#include "icp_initializer_internal.h"
 #include "registration/synthetic_scene.h"
 
 namespace hylo::registration {
@@ -23,7 +25,9 @@ using namespace synthetic_scene;
 class IcpInitializerTest : public ::testing::Test {
  protected:
   IcpInitializerTest()
-      : tree_(Tree(Yard(0.1f, 1))), map_(*tree_), truth_(Pose(1.0, -2.0, 0.6, 35.0)),
+      : tree_(Tree(Yard(0.1f, 1))),
+        map_(*tree_),
+        truth_(Pose(1.0, -2.0, 0.6, 35.0)),
         scan_(InBody(Yard(0.4f, 2), truth_, 0.01, 3)) {}
   std::unique_ptr<mapping::IkdTree> tree_;
   const NeighborSearch& map_;
@@ -41,6 +45,7 @@ TEST_F(IcpInitializerTest, NearGuessIsAcceptedWithoutSearch) {
   EXPECT_LT(TranslationError(r.T_map_imu, truth_), 0.02);
   EXPECT_LT(RotationErrorDeg(r.T_map_imu, truth_), 0.2);
   EXPECT_LT(r.fitness_score_m2, 0.01);
+  EXPECT_LT(r.plane_fitness_m2, initializer.options().plane_fitness_threshold_m2);
   EXPECT_GT(r.inlier_ratio, 0.95);
   EXPECT_GT(r.constraint, initializer.options().min_constraint);
 }
@@ -110,6 +115,7 @@ TEST(IcpInitializerDegenerate, FlatPlaneIsReportedNotAccepted) {
       IcpInitializer().Initialize(scan, *Tree(ground), Pose(2.5, 1, 0.6, 30));
   EXPECT_FALSE(r.accepted) << r.message;
   EXPECT_LT(r.best_fitness_score_m2, 0.01);  // the fitness alone would have accepted
+  EXPECT_LT(r.best_plane_fitness_m2, IcpInitializerOptions().plane_fitness_threshold_m2);
   EXPECT_LT(r.best_constraint, IcpInitializerOptions().min_constraint);
   EXPECT_NE(r.message.find("constraint"), std::string::npos) << r.message;
 }
@@ -127,8 +133,40 @@ TEST_F(IcpInitializerTest, PartialOverlapWithLowFitnessIsRejected) {
   options.search_enabled = false;
   const IcpInitializerResult r = IcpInitializer(options).Initialize(scan, map_, truth_);
   EXPECT_FALSE(r.accepted) << r.message;
-  EXPECT_LT(r.best_fitness_score_m2, options.fitness_threshold_m2);
+  EXPECT_LT(r.best_fitness_score_m2, 0.01);
+  EXPECT_LT(r.best_plane_fitness_m2, options.plane_fitness_threshold_m2);
   EXPECT_LT(r.best_inlier_ratio, options.min_inlier_ratio);
+}
+
+// A sparse map (the yard's ground on a 0.25 m grid, its walls and boxes at 0.25 m): the right
+// pose lies between the map's points, so the paper's nearest-point fitness exceeds its 0.01 m^2
+// there, while the distance to the map's planes does not depend on the spacing. A pose 10 cm
+// too high (and 15 cm along x) is still refused by the plane fitness.
+TEST(IcpInitializerSparseMap, TheGateDoesNotDependOnTheMapSpacing) {
+  PointCloud sparse;
+  for (float y = -15.f; y <= 15.f; y += 0.25f) {
+    for (float x = -15.f; x <= 15.f; x += 0.25f) sparse.emplace_back(x, y, 0.f);
+  }
+  for (const Eigen::Vector3f& p : Yard(0.25f, 4)) {
+    if (p.z() > 0.05f) sparse.push_back(p);
+  }
+  const auto tree = Tree(sparse);
+  const Eigen::Isometry3d truth = Pose(1.0, -2.0, 0.6, 35.0);
+  const PointCloud scan = InBody(Yard(0.05f, 5), truth, 0.01, 6);
+  IcpInitializerOptions options;
+  options.search_enabled = false;
+  const IcpInitializerResult r = IcpInitializer(options).Initialize(scan, *tree, truth);
+  ASSERT_TRUE(r.accepted) << r.message;
+  EXPECT_GT(r.fitness_score_m2, 0.01) << "the paper's gate would have refused the right pose";
+  EXPECT_LT(TranslationError(r.T_map_imu, truth), 0.05);
+  // The measures themselves, without ICP moving the pose: right, and off.
+  const PointCloud fine = UniformSample(scan, static_cast<float>(options.fine_voxel_m));
+  const internal::PoseQuality at_truth = internal::MeasureQuality(fine, *tree, truth, options);
+  EXPECT_GT(at_truth.fitness_score_m2, 0.01);
+  EXPECT_LT(at_truth.plane_fitness_m2, 0.25 * options.plane_fitness_threshold_m2);
+  const internal::PoseQuality off =
+      internal::MeasureQuality(fine, *tree, Pose(0.15, 0.0, 0.1, 0.0) * truth, options);
+  EXPECT_GT(off.plane_fitness_m2, options.plane_fitness_threshold_m2);
 }
 
 TEST(IcpInitializerOptions, IsValidNamesTheField) {
@@ -147,6 +185,14 @@ TEST(IcpInitializerOptions, IsValidNamesTheField) {
   EXPECT_FALSE(o.IsValid(&why));
   EXPECT_NE(why.find("fine_icp.max_iterations"), std::string::npos) << why;
   o = IcpInitializerOptions();
+  o.plane_fitness_threshold_m2 = 0.0;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("plane_fitness_threshold_m2"), std::string::npos) << why;
+  o = IcpInitializerOptions();
+  o.fitness_threshold_m2 = -1.0;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("fitness_threshold_m2"), std::string::npos) << why;
+  o = IcpInitializerOptions();
   o.yaw_step_deg = 0;
   EXPECT_FALSE(o.IsValid(&why));
   EXPECT_THROW(IcpInitializer{o}, InternalError);
@@ -154,13 +200,12 @@ TEST(IcpInitializerOptions, IsValidNamesTheField) {
 
 TEST(IcpInitializerGravity, GuessLevelsTheMeasuredUpDirection) {
   // An IMU pitched by 10 deg and rolled by -5 deg measures "up" in its own frame.
-  const Eigen::Matrix3d R_true =
-      (Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()) *
-       Eigen::AngleAxisd(10 * kDeg, Eigen::Vector3d::UnitY()) *
-       Eigen::AngleAxisd(-5 * kDeg, Eigen::Vector3d::UnitX())).toRotationMatrix();
+  const Eigen::Matrix3d R_true = (Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()) *
+                                  Eigen::AngleAxisd(10 * kDeg, Eigen::Vector3d::UnitY()) *
+                                  Eigen::AngleAxisd(-5 * kDeg, Eigen::Vector3d::UnitX()))
+                                     .toRotationMatrix();
   const Eigen::Vector3d force_imu = R_true.transpose() * Eigen::Vector3d(0, 0, 9.81);
-  const Eigen::Isometry3d T =
-      GuessFromGravity(Eigen::Vector3d(1, 2, 3), 0.3, force_imu);
+  const Eigen::Isometry3d T = GuessFromGravity(Eigen::Vector3d(1, 2, 3), 0.3, force_imu);
   EXPECT_LT((T.linear() * force_imu.normalized() - Eigen::Vector3d::UnitZ()).norm(), 1e-12);
   EXPECT_TRUE(T.translation().isApprox(Eigen::Vector3d(1, 2, 3)));
   EXPECT_THROW(GuessFromGravity(Eigen::Vector3d::Zero(), 0.0, Eigen::Vector3d::Zero()),

@@ -32,7 +32,7 @@ using hylo::testing::Tail;
 using std::chrono::seconds;
 
 const std::string kConfig = std::string(HYLO_SOURCE_DIR) + "/config/sim_vlp16.yaml";
-constexpr double kSlamAteBoundM = 0.15;  // `hylo map` reaches ~0.03 m offline on this bag
+constexpr double kSlamAteBoundM = 0.15;            // `hylo map` reaches ~0.03 m offline on this bag
 constexpr double kLocalizationErrorBoundM = 0.15;  // `hylo localize`: ~0.002 m offline
 
 class RosNodeIntegration : public ::testing::Test {
@@ -58,9 +58,14 @@ class RosNodeIntegration : public ::testing::Test {
 
   /// `hylo simulate` of session a into dir_/sim.
   void Simulate(int duration_s, bool site) {
-    std::vector<std::string> argv = {std::string(HYLO_BINARY_DIR) + "/apps/hylo", "simulate",
-                                     "--out", dir_ + "/sim", "--session", "a",
-                                     "--duration", std::to_string(duration_s)};
+    std::vector<std::string> argv = {std::string(HYLO_BINARY_DIR) + "/apps/hylo",
+                                     "simulate",
+                                     "--out",
+                                     dir_ + "/sim",
+                                     "--session",
+                                     "a",
+                                     "--duration",
+                                     std::to_string(duration_s)};
     if (!site) argv.push_back("--no-site");
     ChildProcess simulate(argv, dir_ + "/simulate.log");
     const std::optional<int> code = simulate.Wait(seconds(60));
@@ -95,8 +100,8 @@ TEST_F(RosNodeIntegration, SlamOdometryMatchesTruthAndTfTreeIsComplete) {
   hylo::testing::Collected& c = graph_->collected();
   ros::NodeHandle nh;
   ros::Publisher late_imu = nh.advertise<sensor_msgs::Imu>("/imu", 10);
-  ASSERT_TRUE(hylo::testing::WaitFor([&] { return late_imu.getNumSubscribers() > 0; },
-                                     seconds(10)));
+  ASSERT_TRUE(
+      hylo::testing::WaitFor([&] { return late_imu.getNumSubscribers() > 0; }, seconds(10)));
   for (int i = 0; i < 5; ++i) {
     sensor_msgs::Imu late;
     late.header.stamp.fromNSec(1'700'000'000'000'000'000ULL + 5'000'000ULL * i);
@@ -122,9 +127,10 @@ TEST_F(RosNodeIntegration, SlamOdometryMatchesTruthAndTfTreeIsComplete) {
       hylo::testing::PosesOf(c.odometry),
       hylo::testing::ReadTruth(dir_ + "/sim/session_a_truth.tum", Eigen::Vector3d::Zero()));
   ASSERT_TRUE(ate.ok) << ate.message;
-  std::printf("[ros slam] %zu odometry messages, ATE (SE3-aligned) rmse %.4f m, max %.4f m, "
-              "rot rmse %.3f deg, path %.1f m\n", c.odometry.size(), ate.rmse_m, ate.max_m,
-              ate.rotation_rmse_deg, ate.path_length_m);
+  std::printf(
+      "[ros slam] %zu odometry messages, ATE (SE3-aligned) rmse %.4f m, max %.4f m, "
+      "rot rmse %.3f deg, path %.1f m\n",
+      c.odometry.size(), ate.rmse_m, ate.max_m, ate.rotation_rmse_deg, ate.path_length_m);
   EXPECT_EQ(ate.num_unmatched, 0u);
   EXPECT_LT(ate.rmse_m, kSlamAteBoundM);
   EXPECT_GT(ate.path_length_m, 20.0) << "the vehicle must move for the ATE to mean much";
@@ -179,16 +185,16 @@ TEST_F(RosNodeIntegration, LocalizesInAShiftedPriorMapAndRelocalizesOnRequest) {
   std::string error;
   ASSERT_TRUE(graph_->StartMaster(dir_, &error)) << error;
   WriteCostmap(dir_ + "/costmap.yaml", offset);
-  ASSERT_TRUE(graph_->StartNode({"_config:=" + kConfig, "_prior_map:=" + dir_ + "/prior.pcd",
-                                 "_initial_guess:=" + MatrixText(guess),
-                                 "_costmap:=" + dir_ + "/costmap.yaml",
-                                 "_save_map_path:=" + dir_ + "/saved_map.pcd"},
-                                &error))
+  ASSERT_TRUE(graph_->StartNode(
+      {"_config:=" + kConfig, "_prior_map:=" + dir_ + "/prior.pcd",
+       "_initial_guess:=" + MatrixText(guess), "_costmap:=" + dir_ + "/costmap.yaml",
+       "_save_map_path:=" + dir_ + "/saved_map.pcd"},
+      &error))
       << error;
   // The costmap is latched: a late subscriber gets it.
   ros::NodeHandle nh;
   const auto grid = ros::topic::waitForMessage<nav_msgs::OccupancyGrid>("/hylo_node/costmap", nh,
-                                                                       ros::Duration(10.0));
+                                                                        ros::Duration(10.0));
   ASSERT_NE(grid, nullptr) << "no latched ~costmap";
   EXPECT_EQ(grid->header.frame_id, "map");
   ASSERT_EQ(grid->info.width, 20u);
@@ -235,17 +241,17 @@ TEST_F(RosNodeIntegration, LocalizesInAShiftedPriorMapAndRelocalizesOnRequest) {
   const evaluation::AteResult ate =
       evaluation::ComputeAte(hylo::testing::PosesOf(c.odometry), truth, absolute);
   ASSERT_TRUE(ate.ok) << ate.message;
-  std::printf("[ros localization] %zu odometry messages, error in the map frame (no alignment) "
-              "rmse %.4f m, max %.4f m, rot rmse %.3f deg\n", c.odometry.size(), ate.rmse_m,
-              ate.max_m, ate.rotation_rmse_deg);
+  std::printf(
+      "[ros localization] %zu odometry messages, error in the map frame (no alignment) "
+      "rmse %.4f m, max %.4f m, rot rmse %.3f deg\n",
+      c.odometry.size(), ate.rmse_m, ate.max_m, ate.rotation_rmse_deg);
   EXPECT_LT(ate.rmse_m, kLocalizationErrorBoundM);
   EXPECT_LT(ate.max_m, 2 * kLocalizationErrorBoundM);
   ExpectTfTreeAt(c, c.odometry.back());
   ASSERT_TRUE(c.tf.canTransform("map", "map_local", ros::Time(0), &error)) << error;
   const geometry_msgs::TransformStamped map_local =
       c.tf.lookupTransform("map", "map_local", ros::Time(0));
-  const Eigen::Vector3d origin(map_local.transform.translation.x,
-                               map_local.transform.translation.y,
+  const Eigen::Vector3d origin(map_local.transform.translation.x, map_local.transform.translation.y,
                                map_local.transform.translation.z);
   EXPECT_LT((origin - offset).norm(), 200.0) << "the local origin lies in the shifted site";
   bool relocalized = false, localization_mode = false;
@@ -256,6 +262,53 @@ TEST_F(RosNodeIntegration, LocalizesInAShiftedPriorMapAndRelocalizesOnRequest) {
   EXPECT_TRUE(relocalized) << "no relocalized event on ~health; last: " << c.health.back();
   EXPECT_TRUE(localization_mode);
   EXPECT_NE(c.health.back().find("\"state\":\"localized\""), std::string::npos) << c.health.back();
+}
+
+// No ~initial_guess: the node starts by searching the whole prior map; mid-run, ~global_localize
+// makes it forget its pose and search again while the vehicle drives. No odometry may be
+// published at a wrong place at any time (compared with the truth without alignment).
+TEST_F(RosNodeIntegration, StartsGloballyAndSearchesAgainOnRequest) {
+  ASSERT_NO_FATAL_FAILURE(Simulate(20, true));
+  const std::vector<evaluation::TimedPose> truth =
+      hylo::testing::ReadTruth(dir_ + "/sim/session_a_truth.tum", Eigen::Vector3d::Zero());
+  std::string error;
+  ASSERT_TRUE(graph_->StartMaster(dir_, &error)) << error;
+  ASSERT_TRUE(graph_->StartNode(
+      {"_config:=" + kConfig, "_prior_map:=" + dir_ + "/sim/site_reference.pcd"}, &error))
+      << error;
+  hylo::testing::Collected& c = graph_->collected();
+  graph_->StartBag(dir_ + "/sim/session_a.bag");
+  ASSERT_TRUE(hylo::testing::WaitFor([&] { return c.NumOdometry() >= 50; }, seconds(40)))
+      << graph_->NodeLog();
+  std::size_t before_request = 0;
+  {
+    std::lock_guard<std::mutex> lock(c.mutex);
+    before_request = c.odometry.size();
+  }
+  std_srvs::Trigger global;
+  ASSERT_TRUE(ros::service::call("/hylo_node/global_localize", global));
+  EXPECT_TRUE(global.response.success) << global.response.message;
+  ASSERT_TRUE(graph_->WaitForPlayer(&error)) << error;
+  ASSERT_TRUE(graph_->NodeAlive()) << "hylo_node exited:\n" << graph_->NodeLog();
+
+  EXPECT_TRUE(c.HealthContains("\"last_event\":\"initialized: global localization accepted"))
+      << graph_->NodeLog();
+  EXPECT_TRUE(c.HealthContains("\"last_event\":\"searching: global localization requested"))
+      << graph_->NodeLog();
+  EXPECT_TRUE(c.HealthContains("\"last_event\":\"relocalized: global localization accepted"))
+      << graph_->NodeLog();
+  std::lock_guard<std::mutex> lock(c.mutex);
+  EXPECT_GT(c.odometry.size(), before_request + 20) << "odometry must resume after the search";
+  evaluation::AteOptions absolute;
+  absolute.alignment = evaluation::Alignment::kNone;
+  const evaluation::AteResult ate =
+      evaluation::ComputeAte(hylo::testing::PosesOf(c.odometry), truth, absolute);
+  ASSERT_TRUE(ate.ok) << ate.message;
+  std::printf(
+      "[ros global] %zu odometry messages (%zu before the request), error in the map "
+      "frame rmse %.4f m, max %.4f m\n",
+      c.odometry.size(), before_request, ate.rmse_m, ate.max_m);
+  EXPECT_LT(ate.max_m, 2 * kLocalizationErrorBoundM);
 }
 
 }  // namespace

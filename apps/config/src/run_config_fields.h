@@ -180,6 +180,7 @@ void VisitFields(V& v, mapping::PriorMapOptions& o) {
 
 template <class V>
 void VisitFields(V& v, registration::IcpInitializerOptions& o) {
+  v("plane_fitness_threshold_m2", o.plane_fitness_threshold_m2);
   v("fitness_threshold_m2", o.fitness_threshold_m2);
   v("fitness_max_range_m", o.fitness_max_range_m);
   v("inlier_distance_m", o.inlier_distance_m);
@@ -187,6 +188,7 @@ void VisitFields(V& v, registration::IcpInitializerOptions& o) {
   v("min_constraint", o.min_constraint);
   v("fine_voxel_m", o.fine_voxel_m);
   v("fine_max_points", o.fine_max_points);
+  v("plane_refine_iterations", o.plane_refine_iterations);
   v("search_enabled", o.search_enabled);
   v("yaw_range_deg", o.yaw_range_deg);
   v("yaw_step_deg", o.yaw_step_deg);
@@ -202,6 +204,7 @@ void VisitFields(V& v, registration::GlobalLocalizerOptions& o) {
   v("min_range_m", o.min_range_m);
   v("max_range_m", o.max_range_m);
   v("ground_clearance_m", o.ground_clearance_m);
+  v("sensor_height_m", o.sensor_height_m);
   v("z_tolerance_m", o.z_tolerance_m);
   v("yaw_step_deg", o.yaw_step_deg);
   v("max_scan_points", o.max_scan_points);
@@ -210,8 +213,10 @@ void VisitFields(V& v, registration::GlobalLocalizerOptions& o) {
   v("distinct_translation_m", o.distinct_translation_m);
   v("distinct_yaw_deg", o.distinct_yaw_deg);
   v("refine_score_ratio", o.refine_score_ratio);
+  v("fine_hypotheses", o.fine_hypotheses);
   v("ambiguity_inlier_margin", o.ambiguity_inlier_margin);
   v("judge_max_points", o.judge_max_points);
+  v("judge_icp_iterations", o.judge_icp_iterations);
 }
 
 template <class V>
@@ -220,6 +225,14 @@ void VisitFields(V& v, registration::GlobalMapOptions& o) {
   v("z_bin_m", o.z_bin_m);
   v("levels", o.levels);
   v("max_cells_million", o.max_cells_million);
+}
+
+template <class V>
+void VisitFields(V& v, estimation::MovingSearchOptions& o) {
+  v("enabled", o.enabled);
+  v("retry_m", o.retry_m);
+  v("max_distance_m", o.max_distance_m);
+  v("voxel_m", o.voxel_m);
 }
 
 template <class V>
@@ -238,6 +251,7 @@ void VisitFields(V& v, LocalizationSection& c) {
   v("global_enabled", o.global_enabled);
   v.Section("global", o.global);
   v.Section("global_map", o.global_map);
+  v.Section("search", o.search);
 }
 
 template <class V>

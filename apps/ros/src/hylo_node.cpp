@@ -56,6 +56,8 @@ HyloNode::HyloNode(ros::NodeHandle nh, ros::NodeHandle private_nh, const NodePar
   }
   initial_pose_sub_ = nh_.subscribe("/initialpose", 2, &HyloNode::OnInitialPose, this);
   relocalize_srv_ = private_nh_.advertiseService("relocalize", &HyloNode::OnRelocalize, this);
+  global_localize_srv_ =
+      private_nh_.advertiseService("global_localize", &HyloNode::OnGlobalLocalize, this);
   save_map_srv_ = private_nh_.advertiseService("save_map", &HyloNode::OnSaveMap, this);
   ROS_INFO("hylo_node: %s, back-end %s, lidar %s, imu %s, frames %s -> %s -> %s",
            localizing_ ? "localization in a prior map" : "SLAM", config_.BackendName().c_str(),
@@ -68,9 +70,10 @@ void HyloNode::LoadPriorMap() {
   const std::string guess =
       params_.initial_guess.empty() ? config_.initial_guess : params_.initial_guess;
   if (guess.empty() && !config_.pipeline.localization.global_enabled) {
-    throw std::runtime_error("~prior_map without ~initial_guess (\"x y z roll pitch yaw\", m "
-                             "and deg) needs localization.global_enabled in " +
-                             params_.config_path);
+    throw std::runtime_error(
+        "~prior_map without ~initial_guess (\"x y z roll pitch yaw\", m "
+        "and deg) needs localization.global_enabled in " +
+        params_.config_path);
   }
   std::optional<Eigen::Isometry3d> T_world_imu;  // none: the whole map is searched
   try {
@@ -156,41 +159,69 @@ bool HyloNode::OnRelocalize(nav_msgs::SetMap::Request& request,
   return true;
 }
 
-bool HyloNode::OnSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+void HyloNode::AskWorker(std::vector<std::shared_ptr<std::promise<std::string>>>* queue,
+                         std_srvs::Trigger::Response* response) {
   auto promise = std::make_shared<std::promise<std::string>>();
   std::future<std::string> answer = promise->get_future();
   {
     std::lock_guard<std::mutex> lock(request_mutex_);
-    save_requests_.push_back(promise);
+    queue->push_back(promise);
   }
   input_.Notify();
   if (answer.wait_for(std::chrono::seconds(60)) != std::future_status::ready) {
-    response.success = false;
-    response.message = "the worker did not answer within 60 s";
-    return true;
+    response->success = false;
+    response->message = "the worker did not answer within 60 s";
+    return;
   }
   try {
-    response.message = answer.get();
-    response.success = true;
+    response->message = answer.get();
+    response->success = true;
   } catch (const std::exception& e) {
-    response.success = false;
-    response.message = e.what();
+    response->success = false;
+    response->message = e.what();
   }
+}
+
+bool HyloNode::OnGlobalLocalize(std_srvs::Trigger::Request&,
+                                std_srvs::Trigger::Response& response) {
+  AskWorker(&global_requests_, &response);
+  if (!response.success)
+    ROS_WARN("hylo_node: ~global_localize refused: %s", response.message.c_str());
+  return true;
+}
+
+bool HyloNode::OnSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  AskWorker(&save_requests_, &response);
   return true;
 }
 
 void HyloNode::ServeRequests() {
   std::optional<Eigen::Isometry3d> relocalization;
-  std::vector<std::shared_ptr<std::promise<std::string>>> saves;
+  std::vector<std::shared_ptr<std::promise<std::string>>> saves, globals;
   {
     std::lock_guard<std::mutex> lock(request_mutex_);
     relocalization.swap(relocalization_request_);
     saves.swap(save_requests_);
+    globals.swap(global_requests_);
   }
   if (relocalization) {
     pipeline_.RequestRelocalization(*relocalization);
     relocalization_pending_ = true;
     ROS_INFO("hylo_node: relocalization requested");
+  }
+  for (auto& promise : globals) {
+    std::string why;
+    if (pipeline_.status() == Status::kFailed) {
+      why = "the pipeline stopped: " + pipeline_.message();
+    } else if (pipeline_.RequestGlobalLocalization(&why)) {
+      relocalization_pending_ = true;
+      ROS_INFO("hylo_node: global localization requested");
+      promise->set_value(
+          "searching the whole prior map; no odometry until a pose is accepted "
+          "(see ~health)");
+      continue;
+    }
+    promise->set_exception(std::make_exception_ptr(std::runtime_error(why)));
   }
   if (saves.empty()) return;
   std::string path = params_.save_map_path;

@@ -7,7 +7,8 @@
 //   publishes   ~odometry, /tf, ~path, ~registered_scan, ~map_cloud (latched), ~health,
 //               ~costmap (latched, when ~costmap is given)
 //   services    ~relocalize (nav_msgs/SetMap: initial_pose is the guess, map is ignored),
-//               ~save_map (std_srvs/Trigger: writes ~save_map_path)
+//               ~global_localize (std_srvs/Trigger: forget the pose, search the whole prior
+//               map while moving), ~save_map (std_srvs/Trigger: writes ~save_map_path)
 
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <nav_msgs/SetMap.h>
@@ -45,7 +46,11 @@ class HyloNode {
   void OnImu(const sensor_msgs::Imu::ConstPtr& msg);
   void OnInitialPose(const geometry_msgs::PoseWithCovarianceStamped::ConstPtr& msg);
   bool OnRelocalize(nav_msgs::SetMap::Request& request, nav_msgs::SetMap::Response& response);
+  bool OnGlobalLocalize(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool OnSaveMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+  /// Posts `job` to the worker and fills `response` with its answer (or its exception).
+  void AskWorker(std::vector<std::shared_ptr<std::promise<std::string>>>* queue,
+                 std_srvs::Trigger::Response* response);
 
   /// Queues a relocalization around a world-frame pose; false with *why when impossible.
   bool RequestRelocalization(const std::string& frame_id, const Eigen::Isometry3d& T_world_imu,
@@ -68,7 +73,7 @@ class HyloNode {
   InputQueue input_;
   NodeOutputs outputs_;
   ros::Subscriber cloud_sub_, imu_sub_, initial_pose_sub_;
-  ros::ServiceServer relocalize_srv_, save_map_srv_;
+  ros::ServiceServer relocalize_srv_, global_localize_srv_, save_map_srv_;
 
   // Callback side (lidar callback only).
   io::PointTimeConvention convention_;
@@ -79,6 +84,7 @@ class HyloNode {
   std::mutex request_mutex_;
   std::optional<Eigen::Isometry3d> relocalization_request_;  ///< T_map_imu (local frame)
   std::vector<std::shared_ptr<std::promise<std::string>>> save_requests_;
+  std::vector<std::shared_ptr<std::promise<std::string>>> global_requests_;
 
   // Worker side.
   bool relocalization_pending_ = false;

@@ -37,6 +37,7 @@ io::Json EventsJson(const std::vector<estimation::LocalizationEvent>& events,
     const Eigen::Matrix3d& R = e.T_map_imu.linear();
     j["yaw_deg"] = std::atan2(R(1, 0), R(0, 0)) * 180.0 / M_PI;
     if (std::isfinite(e.fitness_m2)) j["fitness_m2"] = e.fitness_m2;
+    if (std::isfinite(e.plane_fitness_m2)) j["plane_fitness_m2"] = e.plane_fitness_m2;
     j["inlier_ratio"] = e.inlier_ratio;
     j["message"] = e.message;
     array.push_back(j);

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "hylo/estimation/imu_initializer.h"
 #include "hylo/estimation/initial_uncertainty.h"
 #include "hylo/estimation/localization.h"
+#include "hylo/estimation/localization_search.h"
 #include "hylo/estimation/scan_result.h"
 #include "hylo/registration/global_localizer.h"
 #include "hylo/registration/global_map.h"
@@ -32,15 +34,24 @@ class LocalizationSupervisor {
  public:
   /// `T_map_imu_guess`: the start guess, or none (a global start). `global_map`: the prior
   /// map's raster for the global localizer, owned by the caller and outliving this; nullptr
-  /// when there is none, `global_map_unavailable` then says why.
+  /// when there is none, `global_map_unavailable` then says why. `search_map` and
+  /// `search_planes`: the run's map and plane settings, for the scratch map of a search while
+  /// moving (localization_search.h).
   LocalizationSupervisor(const LocalizationOptions& options, const InitialUncertainty& uncertainty,
                          const std::optional<Eigen::Isometry3d>& T_map_imu_guess,
                          const registration::GlobalMap* global_map,
-                         const std::string& global_map_unavailable);
+                         const std::string& global_map_unavailable,
+                         const mapping::MapManagerOptions& search_map,
+                         const registration::PlaneMatcherOptions& search_planes);
 
   /// Relocalize around `T_map_imu_guess` with the next scan (e.g. ROS /initialpose); before
   /// the start it replaces the initial guess.
   void RequestRelocalization(const Eigen::Isometry3d& T_map_imu_guess);
+  /// Forget the pose and search the whole map (e.g. the robot was carried): before the start
+  /// the guess is dropped; after it, from the next scan on, the vehicle searches while moving
+  /// (no pose is reported until the global localizer accepts one). False with *why when there
+  /// is no global map to search.
+  bool RequestGlobalLocalization(std::string* why);
 
   // --- the start ---
   /// Adds one static scan (IMU frame, m) whose IMU data ends at `imu_end_t_ns` (0: none).
@@ -51,9 +62,27 @@ class LocalizationSupervisor {
   /// one), biases, gravity and extrinsic; with `gravity_known` its roll and pitch (from the IMU
   /// at rest) replace the guess's. Without a guess, or when the guess is rejected, the global
   /// localizer searches the whole map (global_enabled). False with *why when no pose was
-  /// accepted (rejected, ambiguous or not found: the reason says which).
+  /// accepted (rejected, ambiguous or not found: the reason says which); when the global
+  /// localizer ran and options.search is enabled, searching() is then true and `estimator`
+  /// runs in the search frame (see Search).
   bool Start(NavState start, bool gravity_known, const registration::NeighborSearch& map,
              Estimator* estimator, std::string* why);
+
+  // --- searching while moving (localization_search.h) ---
+  /// True while no pose is known and the estimator runs in the provisional search frame,
+  /// registered against search_matcher() instead of the prior.
+  bool searching() const { return search_ != nullptr; }
+  const registration::PlaneMatcher& search_matcher() const { return search_->matcher(); }
+  enum class SearchStep { kSearching, kLocalized, kGaveUp };
+  /// After an update in the search frame: accumulates the scan (`sweep_imu`, the whole
+  /// deskewed scan in the IMU frame at the estimator's state; `map_points_search`, the points
+  /// odometry adds to its map, search frame, empty when the update failed) and, when due,
+  /// tries the global localizer on the longer cloud against `map` (the prior). kLocalized:
+  /// `estimator` was started again at the accepted pose in the map. kGaveUp: max_distance_m
+  /// travelled, the reason in *why.
+  SearchStep Search(const PointCloud& sweep_imu, const PointCloud& map_points_search,
+                    const registration::NeighborSearch& map, Estimator* estimator,
+                    std::string* why);
 
   // --- every scan after the start ---
   /// Judges the scan by `result->health` (from its update), counts bad scans, declares the
@@ -92,6 +121,15 @@ class LocalizationSupervisor {
   std::string StartGlobally(const NavState& start, bool gravity_known,
                             const registration::NeighborSearch& map,
                             registration::IcpInitializerResult* icp) const;
+  // Searching while moving is possible: enabled, and a global map to search.
+  bool CanSearch() const { return options_.search.enabled && global_map_ != nullptr; }
+  // Starts searching while moving from `x` (search frame = the estimator's frame), seeded
+  // with `points_imu`; `reason` says why there is no pose.
+  void BeginSearch(const NavState& x, const PointCloud& points_imu, bool is_start,
+                   const std::string& reason);
+  // The search found the vehicle at `T_map_imu`: the estimator goes on in the map.
+  void EndSearch(const Eigen::Isometry3d& T_map_imu, Estimator* estimator,
+                 const std::string& verdict, const registration::IcpInitializerResult& icp);
   // The initializer around `T_map_imu_guess`; when it fails and `allow_global`, the global
   // localizer on the sweep.
   bool Relocalize(const PointCloud& sweep_imu, const registration::NeighborSearch& map,
@@ -104,12 +142,21 @@ class LocalizationSupervisor {
   LocalizationOptions options_;
   InitialUncertainty uncertainty_;
   registration::IcpInitializer icp_initializer_;
+  // The same without point-to-plane steps, for one sweep of a moving vehicle: on so few points
+  // the steps slid a relocalization 13 cm along the site's weakly constrained directions,
+  // where the point-to-point ICP alone stayed within millimetres.
+  registration::IcpInitializer sweep_initializer_;
   registration::GlobalLocalizer global_localizer_;
   const registration::GlobalMap* global_map_;  // not owned; nullptr: no global start
   std::string global_map_unavailable_;         // why global_map_ is nullptr
   std::optional<Eigen::Isometry3d> guess_;     // T_map_imu at the start; none: global start
   StaticScans static_;
   std::optional<Eigen::Isometry3d> relocalize_request_;  // T_map_imu
+  bool global_request_ = false;                          // search from the next scan on
+  mapping::MapManagerOptions search_map_;
+  registration::PlaneMatcherOptions search_planes_;
+  std::unique_ptr<MovingSearch> search_;  // non-null while searching
+  bool search_is_start_ = false;          // the search began at the start (not on request)
   int bad_scans_in_row_ = 0;
   int scans_until_retry_ = 0;
   bool lost_ = false;

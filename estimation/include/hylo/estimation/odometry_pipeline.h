@@ -73,8 +73,9 @@ struct OdometryPipelineOptions {
 
 class OdometryPipeline {
  public:
-  /// kInitializing: IMU at rest / ICP initializer; kRunning; kLost: running, but health was
-  /// bad for lost_after_scans scans and a relocalization is pending; kFailed: see message().
+  /// kInitializing: IMU at rest / ICP initializer / searching while moving (no pose in the
+  /// map yet: no results); kRunning; kLost: running, but health was bad for lost_after_scans
+  /// scans and a relocalization is pending; kFailed: see message().
   enum class Status { kInitializing, kRunning, kLost, kFailed };
 
   /// Throws hylo::InternalError naming the field when `options` is not valid.
@@ -104,6 +105,9 @@ class OdometryPipeline {
   /// Relocalize around `T_map_imu_guess` with the next scan (e.g. ROS /initialpose). Before
   /// the start it replaces the initial guess. Needs a prior map.
   void RequestRelocalization(const Eigen::Isometry3d& T_map_imu_guess);
+  /// Forget the pose and search the whole prior map (LocalizationSupervisor::
+  /// RequestGlobalLocalization). False with *why without a prior map or a global map.
+  bool RequestGlobalLocalization(std::string* why);
   /// True when SetInitialGuess was called (localization in a prior map).
   bool localizing() const { return supervisor_ != nullptr; }
   /// Start, loss, relocalization and hybrid events in time order.
