@@ -5,6 +5,7 @@
 #         report fatal (and LeakSanitizer at exit), in ./build-asan
 #   tsan  the tests of the code that runs threads, built with ThreadSanitizer, in ./build-tsan:
 #         the ROS node's input queue (callbacks on two threads), concurrent ikd-tree queries,
+#         a tiled prior's background loader (TileStreamer),
 #         map crafting's MLS workers (std::thread, and PCL's OpenMP loop)
 # Prints the wall and CPU time of each part. The long suites (simulated sessions, real data, the
 # CLI end to end: `long_tests` below, matched on the test's executable or name) are left out of
@@ -82,7 +83,7 @@ if [ "$what" = tsan ] || [ "$what" = all ]; then
   archer=$(clang++ -print-file-name=libarcher.so)
   [ -f "$archer" ] && export OMP_TOOL_LIBRARIES="$archer"
   configure build-tsan "-fsanitize=thread" -DHYLO_BUILD_BENCHMARKS=OFF
-  tsan_tests=(ikd_tree_test craft_test)
+  tsan_tests=(ikd_tree_test tiles_test craft_test)
   [ -n "$(grep -s 'HYLO_BUILD_ROS:BOOL=ON' build-tsan/CMakeCache.txt)" ] &&
     tsan_tests+=(ros_node_units_test)
   timed "tsan build" cmake --build build-tsan -j"$jobs" --target "${tsan_tests[@]}" || failed=1
