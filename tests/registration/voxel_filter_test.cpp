@@ -82,7 +82,7 @@ TEST(UniformSampler, SkipsAndCountsUnusablePoints) {
 TEST(UniformSampler, RejectsANonPositiveOrNonFiniteVoxel) {
   EXPECT_THROW(UniformSampler(0.f), InternalError);
   EXPECT_THROW(UniformSampler(-0.1f), InternalError);
-  EXPECT_THROW(UniformSampler(std::numeric_limits<float>::quiet_NaN()), InternalError);
+  EXPECT_THROW(UniformSampler{std::numeric_limits<float>::quiet_NaN()}, InternalError);
 }
 
 }  // namespace
