@@ -110,10 +110,18 @@ int main(int argc, char** argv) {
   int count = 1000000;
   bool ground_only = false;
   for (int i = 1; i < argc; ++i) {
-    if (std::string(argv[i]) == "--ground-only") {
+    const std::string arg = argv[i];
+    char* end = nullptr;
+    const long value = std::strtol(arg.c_str(), &end, 10);
+    if (arg == "--ground-only") {
       ground_only = true;
+    } else if (!arg.empty() && *end == '\0' && value > 0 && value <= 100000000) {
+      count = static_cast<int>(value);
     } else {
-      count = std::atoi(argv[i]);
+      // --help, a typo or a count out of range: a usage line, never a run on 0 points.
+      std::fprintf(arg == "--help" || arg == "-h" ? stdout : stderr,
+                   "usage: %s [num_points=1000000, 1..1e8] [--ground-only]\n", argv[0]);
+      return arg == "--help" || arg == "-h" ? 0 : 2;
     }
   }
   if (!ground_only) CraftTimings(count);
