@@ -6,22 +6,12 @@
 #include <sstream>
 
 #include "hylo/common/time.h"
+#include "hylo/lie/isometry.h"
 
 namespace hylo::estimation {
 namespace {
 
 double YawOf(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
-
-lie::SE3d ToSE3(const Eigen::Isometry3d& T) {
-  return lie::SE3d(lie::SO3d::FromMatrix(T.rotation()), T.translation());
-}
-
-Eigen::Isometry3d ToIsometry(const lie::SE3d& T) {
-  Eigen::Isometry3d iso = Eigen::Isometry3d::Identity();
-  iso.linear() = T.so3().Matrix();
-  iso.translation() = T.translation();
-  return iso;
-}
 
 registration::IcpInitializerOptions WithoutPlaneSteps(registration::IcpInitializerOptions icp) {
   icp.plane_refine_iterations = 0;
@@ -121,7 +111,7 @@ bool LocalizationSupervisor::Start(NavState start, bool gravity_known,
              Eigen::Isometry3d::Identity(), &icp);
     return false;
   }
-  const lie::SE3d T_map_imu = ToSE3(icp.T_map_imu);
+  const lie::SE3d T_map_imu = lie::FromIsometry(icp.T_map_imu);
   start.R_map_imu = T_map_imu.so3();
   start.p_map_imu = T_map_imu.translation();
   start.v_map_imu.setZero();
@@ -180,7 +170,7 @@ void LocalizationSupervisor::Supervise(const std::function<PointCloud()>& sweep_
     os << bad_scans_in_row_ << " bad scans in a row (inlier ratio " << health.inlier_ratio << ", "
        << health.num_matches << " matches)";
     AddEvent(LocalizationEvent::Kind::kLost, result->t_ns, os.str(),
-             ToIsometry(result->state.T_map_imu()));
+             lie::ToIsometry(result->state.T_map_imu()));
   }
   if (global_request_) {
     global_request_ = false;
@@ -194,7 +184,7 @@ void LocalizationSupervisor::Supervise(const std::function<PointCloud()>& sweep_
   // A user's request is judged as given; only the search of a lost vehicle may go global.
   const bool requested = guess.has_value();
   if (!guess && lost_ && scans_until_retry_-- <= 0) {
-    guess = ToIsometry(estimator->state().T_map_imu());  // search around where we are
+    guess = lie::ToIsometry(estimator->state().T_map_imu());  // search around where we are
   }
   if (!guess) return;
   if (Relocalize(sweep_imu(), map, *guess, /*allow_global=*/!requested, estimator)) {
@@ -224,11 +214,11 @@ bool LocalizationSupervisor::Relocalize(const PointCloud& sweep_imu,
   }
   if (!icp.accepted) {
     AddEvent(LocalizationEvent::Kind::kRelocalizationFailed, before.t_ns, verdict,
-             ToIsometry(before.T_map_imu()), &icp);
+             lie::ToIsometry(before.T_map_imu()), &icp);
     return false;
   }
   NavState x = before;
-  const lie::SE3d T_map_imu = ToSE3(icp.T_map_imu);
+  const lie::SE3d T_map_imu = lie::FromIsometry(icp.T_map_imu);
   x.R_map_imu = T_map_imu.so3();
   x.p_map_imu = T_map_imu.translation();
   x.v_map_imu = x.R_map_imu * (before.R_map_imu.Inverse() * before.v_map_imu);  // body velocity
@@ -250,7 +240,7 @@ bool LocalizationSupervisor::MapUpdateAllowed(const ScanResult& result) {
     hybrid_started_ = true;
     AddEvent(LocalizationEvent::Kind::kHybridStarted, result.t_ns,
              "registered scans are added to the map from now on",
-             ToIsometry(result.state.T_map_imu()));
+             lie::ToIsometry(result.state.T_map_imu()));
   }
   // Only scans that fit the map extend it: a scan registered while lost would corrupt it.
   return result.update.applied && result.health.good && !lost_;

@@ -6,6 +6,7 @@
 
 #include "hylo/estimation/localization_search.h"
 #include "hylo/estimation/localization_supervisor.h"
+#include "hylo/lie/isometry.h"
 
 namespace hylo::estimation {
 namespace {
@@ -17,17 +18,6 @@ PointCloud Transformed(const Eigen::Isometry3d& T_to_from, const PointCloud& poi
     points_to.push_back((T_to_from * p.cast<double>()).cast<float>());
   }
   return points_to;
-}
-
-Eigen::Isometry3d ToIsometry(const lie::SE3d& T) {
-  Eigen::Isometry3d iso = Eigen::Isometry3d::Identity();
-  iso.linear() = T.so3().Matrix();
-  iso.translation() = T.translation();
-  return iso;
-}
-
-lie::SE3d ToSE3(const Eigen::Isometry3d& T) {
-  return lie::SE3d(lie::SO3d::FromMatrix(T.rotation()), T.translation());
 }
 
 }  // namespace
@@ -121,20 +111,20 @@ void LocalizationSupervisor::BeginSearch(const NavState& x, const PointCloud& po
                                          bool is_start, const std::string& reason) {
   search_ = std::make_unique<MovingSearch>(options_.search, search_map_, search_planes_,
                                            options_.global.max_range_m, options_.init_scans);
-  search_->Begin(points_imu, ToIsometry(x.T_map_imu()));
+  search_->Begin(points_imu, lie::ToIsometry(x.T_map_imu()));
   search_is_start_ = is_start;
   lost_ = false;
   bad_scans_in_row_ = 0;
   AddEvent(LocalizationEvent::Kind::kSearching, x.t_ns,
            reason + "; searching while the vehicle moves (no pose until one is accepted)",
-           ToIsometry(x.T_map_imu()));
+           lie::ToIsometry(x.T_map_imu()));
 }
 
 LocalizationSupervisor::SearchStep LocalizationSupervisor::Search(
     const PointCloud& sweep_imu, const PointCloud& map_points_search,
     const registration::NeighborSearch& map, Estimator* estimator, std::string* why) {
   const NavState x = estimator->state();
-  const Eigen::Isometry3d T_search_imu = ToIsometry(x.T_map_imu());
+  const Eigen::Isometry3d T_search_imu = lie::ToIsometry(x.T_map_imu());
   // Begun on request, a standing vehicle tries once it has as many scans as a start.
   const int first_attempt_scans = search_is_start_ ? 0 : options_.init_scans;
   const bool due = search_->Add(sweep_imu, map_points_search, T_search_imu, first_attempt_scans);
@@ -193,7 +183,7 @@ void LocalizationSupervisor::EndSearch(const Eigen::Isometry3d& T_map_imu, Estim
                                        const registration::IcpInitializerResult& icp) {
   NavState x = estimator->state();
   // The search frame placed in the map: every search-frame quantity moves with it.
-  const lie::SE3d T_map_search = ToSE3(T_map_imu) * x.T_map_imu().Inverse();
+  const lie::SE3d T_map_search = lie::FromIsometry(T_map_imu) * x.T_map_imu().Inverse();
   x.R_map_imu = T_map_search.so3() * x.R_map_imu;
   x.p_map_imu = T_map_search * x.p_map_imu;
   x.v_map_imu = T_map_search.so3() * x.v_map_imu;

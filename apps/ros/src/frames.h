@@ -12,9 +12,6 @@
 
 namespace hylo::rosnode {
 
-/// A Lie-group pose as an Eigen isometry.
-inline Eigen::Isometry3d ToIsometry(const lie::SE3d& T) { return Eigen::Isometry3d(T.Matrix()); }
-
 /// The three transforms of one scan result, in the published frames.
 struct FramePoses {
   Eigen::Isometry3d T_world_odom = Eigen::Isometry3d::Identity();  ///< map → odom (TF)

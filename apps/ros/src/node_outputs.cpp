@@ -5,6 +5,7 @@
 
 #include "hylo/common/time.h"
 #include "hylo/io/ros_bridge.h"
+#include "hylo/lie/isometry.h"
 #include "hylo/registration/voxel_filter.h"
 
 namespace hylo::rosnode {
@@ -62,9 +63,8 @@ void NodeOutputs::SetOrigin(const Eigen::Vector3d& origin_world) {
 }
 
 void NodeOutputs::PublishScan(const estimation::ScanResult& result) {
-  const FramePoses poses =
-      ComputeFramePoses(ToIsometry(result.state.T_map_imu()), ToIsometry(result.T_map_odom),
-                        origin_world_);
+  const FramePoses poses = ComputeFramePoses(lie::ToIsometry(result.state.T_map_imu()),
+                                             lie::ToIsometry(result.T_map_odom), origin_world_);
   const ros::Time stamp = io::ros_bridge::ToRosTime(result.t_ns);
   odometry_.publish(ToOdometryMsg(result, poses, frames_));
   tf_.sendTransform({Stamped(poses.T_world_odom, stamp, frames_.map, frames_.odom),
