@@ -220,7 +220,11 @@ std::vector<uint8_t> FindLowOutliers(const PointCloud& points_inverted, double c
     const int64_t cy = static_cast<int64_t>(std::floor(y / cell_m));
     return std::make_pair(cx, cy);
   };
-  const auto pack = [](int64_t cx, int64_t cy) { return (cx << 32) ^ (cy & 0xffffffffLL); };
+  // Shifted as unsigned: shifting a negative cell index left is undefined behaviour.
+  const auto pack = [](int64_t cx, int64_t cy) {
+    return static_cast<int64_t>((static_cast<uint64_t>(cx) << 32) ^
+                                (static_cast<uint64_t>(cy) & 0xffffffffULL));
+  };
   std::unordered_map<int64_t, std::vector<float>> heights;
   for (const Eigen::Vector3f& p : points_inverted) {
     const auto [cx, cy] = key(p.x(), p.y());
