@@ -26,6 +26,16 @@ std::string FileBytes(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+/// What OpenBag throws for `path` ("" when it opens the bag).
+std::string OpenError(const std::string& path) {
+  try {
+    OpenBag(path, LogReadOptions());
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
 class BagRecordFindings : public ::testing::Test {
  protected:
   /// A small bag as a killed recording leaves it: index_pos still 0, no index at the end.
@@ -112,14 +122,9 @@ TEST_F(BagRecordFindings, MessageDefinitionMismatchErrorNamesTheBag) {
   ASSERT_NE(md5, std::string::npos);
   bytes[md5 + 7] = '0';
   const std::string path = Write(bytes);
-  try {
-    OpenBag(path, LogReadOptions());
-    FAIL() << "a PointCloud2 of another definition was accepted";
-  } catch (const std::runtime_error& e) {
-    const std::string error = e.what();
-    EXPECT_NE(error.find(path), std::string::npos) << error;
-    EXPECT_NE(error.find("md5sum 0158d486"), std::string::npos) << error;
-  }
+  const std::string error = OpenError(path);
+  EXPECT_NE(error.find(path), std::string::npos) << error;
+  EXPECT_NE(error.find("md5sum 0158d486"), std::string::npos) << error;
 }
 
 TEST_F(BagRecordFindings, TopicWithALineBreakGivesAOneLineError) {
@@ -128,15 +133,10 @@ TEST_F(BagRecordFindings, TopicWithALineBreakGivesAOneLineError) {
   ASSERT_NE(topic, std::string::npos);
   bytes[topic + 8] = '\n';  // "/i\nu"
   const std::string path = Write(bytes);
-  try {
-    OpenBag(path, LogReadOptions());
-    FAIL() << "the topic /imu was found";
-  } catch (const std::runtime_error& e) {
-    const std::string error = e.what();
-    EXPECT_EQ(error.find('\n'), std::string::npos) << error;
-    EXPECT_NE(error.find(path), std::string::npos) << error;
-    EXPECT_NE(error.find("/i?u (sensor_msgs/Imu)"), std::string::npos) << error;
-  }
+  const std::string error = OpenError(path);
+  EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+  EXPECT_NE(error.find(path), std::string::npos) << error;
+  EXPECT_NE(error.find("/i?u (sensor_msgs/Imu)"), std::string::npos) << error;
 }
 
 }  // namespace
