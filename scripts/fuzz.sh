@@ -17,7 +17,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
 shift || true
-all_targets=(bag_pointcloud2 bag_imu pcd ply kitti_bin trajectory scan_folder pose_guess
+all_targets=(bag_pointcloud2 bag_imu bag_records pcd ply kitti_bin trajectory scan_folder pose_guess
   run_config json)
 targets=("$@")
 [ "${#targets[@]}" -eq 0 ] && targets=("${all_targets[@]}")

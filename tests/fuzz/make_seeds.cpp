@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "hylo/config/run_config.h"
+#include "hylo/io/bag_writer.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/json.h"
 #include "hylo/io/pointcloud2.h"
@@ -134,6 +135,61 @@ void ImuSeeds() {
   Emit("bag_imu", "at_rest", Serialized(msg));
   msg.linear_acceleration.x = std::numeric_limits<double>::quiet_NaN();
   Emit("bag_imu", "nan_accel", Serialized(msg));
+}
+
+// --- whole bags (read record by record) ----------------------------------------------------
+
+constexpr std::size_t kBagMagicBytes = 13;  // "#ROSBAG V2.0\n"
+
+uint32_t U32At(const std::string& bytes, std::size_t at) {
+  uint32_t v = 0;
+  for (int i = 3; i >= 0; --i) v = v << 8 | static_cast<uint8_t>(bytes[at + i]);
+  return v;
+}
+
+// rosbag pads its bag header record to 4 kB of spaces, which the walker skips whole: the
+// seeds drop the padding so that libFuzzer mutates records, not spaces.
+std::string WithoutHeaderPadding(const std::string& bag) {
+  const std::size_t data_len_at = kBagMagicBytes + 4 + U32At(bag, kBagMagicBytes);
+  return bag.substr(0, data_len_at) + std::string(4, '\0') +
+         bag.substr(data_len_at + 4 + U32At(bag, data_len_at));
+}
+
+// Three IMU samples, a scan (with a NaN point), one more sample: one chunk.
+std::string SmallBag(io::BagCompression compression) {
+  const std::string path = Scratch("b.bag");
+  {
+    io::BagWriter writer(path, compression);
+    const hylo::LidarScan scan = SmallScan();
+    for (int i = 0; i < 4; ++i) {
+      hylo::ImuSample imu;
+      imu.t_ns = scan.t_ns + i * 40'000'000LL;
+      imu.accel_imu = Eigen::Vector3d(0.01 * i, -0.02, 9.81);
+      imu.gyro_imu = Eigen::Vector3d(0.001, 0.002 * i, -0.003);
+      writer.WriteImu("/imu", imu, "imu");
+      if (i == 2) writer.WriteScan("/points", scan, PointTimeConvention::kVelodyne, "lidar");
+    }
+  }
+  return Take(path);
+}
+
+void BagRecordSeeds() {
+  const std::string none = SmallBag(io::BagCompression::kNone);
+  Emit("bag_records", "none_padded", none);
+  const std::string compact = WithoutHeaderPadding(none);
+  Emit("bag_records", "none", compact);
+  Emit("bag_records", "bz2", WithoutHeaderPadding(SmallBag(io::BagCompression::kBz2)));
+  const std::string lz4 = WithoutHeaderPadding(SmallBag(io::BagCompression::kLz4));
+  Emit("bag_records", "lz4", lz4);
+  // Cut short: inside the chunk (uncompressed: inside the scan; lz4: inside its blocks), and
+  // right after the chunk (the index lost, every message whole).
+  Emit("bag_records", "none_cut", compact.substr(0, compact.size() * 6 / 10));
+  Emit("bag_records", "lz4_cut", lz4.substr(0, lz4.size() * 6 / 10));
+  const std::size_t index_pos = none.find("index_pos=");
+  if (index_pos != std::string::npos) {
+    const std::size_t index_at = U32At(none, index_pos + 10);  // u64; small bags fit in u32
+    Emit("bag_records", "no_index", none.substr(0, index_at));
+  }
 }
 
 // --- point cloud files ----------------------------------------------------------------------
@@ -267,13 +323,14 @@ int main(int argc, char** argv) {
     return 2;
   }
   g_out = argv[1];
-  for (const char* target : {"bag_pointcloud2", "bag_imu", "pcd", "ply", "kitti_bin", "trajectory",
-                             "scan_folder", "pose_guess", "run_config", "json"}) {
+  for (const char* target : {"bag_pointcloud2", "bag_imu", "bag_records", "pcd", "ply", "kitti_bin",
+                             "trajectory", "scan_folder", "pose_guess", "run_config", "json"}) {
     fs::remove_all(g_out / target);  // seeds only: a rerun leaves no stale files
   }
   fs::create_directories(g_out);
   PointCloud2Seeds();
   ImuSeeds();
+  BagRecordSeeds();
   CloudSeeds();
   TrajectorySeeds();
   ConfigAndJsonSeeds();

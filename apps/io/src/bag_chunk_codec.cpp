@@ -12,13 +12,16 @@ namespace {
 // No chunk rosbag writes comes near this (uint32 sizes; chunks close at ~768 kB plus one
 // message): a larger output is corrupt data, not a chunk.
 constexpr std::size_t kMaxChunkBytes = std::size_t{1} << 31;
+// The largest block an LZ4 frame (and so roslz4) can declare: 4 MiB.
+constexpr std::size_t kMaxBlockBytes = std::size_t{4} << 20;
 
-/// Room for more output: the announced size (plus one byte, so that data longer than announced
-/// shows), or doubling when the size is unknown; false past either limit.
+/// Room for more output, doubling; false past the limits. The announced size only caps it (at
+/// one byte more, so that data longer than announced shows): a corrupt chunk header announces
+/// gigabytes for a few bytes of data, so the first room is what the input may plausibly give.
 bool Grow(std::size_t produced, uint32_t size, std::size_t n, std::vector<uint8_t>* out) {
   if (size > 0 && produced > size) return false;
-  std::size_t want = 2 * out->size();
-  if (out->empty()) want = size > 0 ? std::size_t{size} + 1 : 4 * n + 4096;
+  std::size_t want = out->empty() ? 64 * n + 4096 : 2 * out->size();
+  if (size > 0) want = std::min(want, std::size_t{size} + 1);
   if (want > kMaxChunkBytes) return false;
   out->resize(want);
   return true;
@@ -41,9 +44,22 @@ bool Drain(const std::string& codec, uint32_t size, std::size_t n, bool complete
       break;
     }
     int code = 0;
+    const std::size_t before = produced;
     const Step step = decode(out->data() + produced, out->size() - produced, &produced, &code);
     if (step == Step::kEnd) break;
-    if (step == Step::kOutputFull) continue;
+    if (step == Step::kOutputFull) {
+      if (produced > before || produced == out->size()) continue;
+      // Output room left and nothing written: roslz4 decodes a block only into room for the
+      // stream's largest block, and asks for more room while it cannot tell that from corrupt
+      // data. Give it that room once; asking again with it is corrupt data, not a full output.
+      if (out->size() - produced >= kMaxBlockBytes || produced + kMaxBlockBytes > kMaxChunkBytes) {
+        *why = codec + ": corrupt data (the decoder makes no progress)";
+        ok = false;
+        break;
+      }
+      out->resize(produced + kMaxBlockBytes);
+      continue;
+    }
     if (step == Step::kError) {
       *why = codec + ": corrupt data (code " + std::to_string(code) + ")";
     } else if (complete) {

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "hylo/io/ros_bridge.h"
+#include "printable.h"
 
 namespace hylo::io::detail {
 namespace {
@@ -10,7 +11,7 @@ namespace {
 std::string Describe(const TopicTypes& topics) {
   std::string out;
   for (const auto& [topic, types] : topics) {
-    out += (out.empty() ? "" : ", ") + topic + " (" + types.front() + ")";
+    out += (out.empty() ? "" : ", ") + Printable(topic) + " (" + Printable(types.front()) + ")";
   }
   return out.empty() ? "none" : out;
 }
@@ -26,8 +27,8 @@ void RequireTopic(const std::string& path, const TopicTypes& topics, const std::
   }
   for (const std::string& found : it->second) {
     if (found != type) {
-      throw std::runtime_error("bag '" + path + "': topic '" + topic + "' has type " + found +
-                               ", expected " + type);
+      throw std::runtime_error("bag '" + path + "': topic '" + topic + "' has type " +
+                               Printable(found) + ", expected " + type);
     }
   }
 }

@@ -14,8 +14,9 @@
 #include <vector>
 
 #include "bag_records.h"
-#include "hylo/io/ros_bridge.h"
 #include "hylo/io/log_reader.h"
+#include "hylo/io/ros_bridge.h"
+#include "printable.h"
 
 namespace hylo::io::detail {
 
@@ -56,8 +57,8 @@ template <class Msg>
 void RequireDefinition(const BagConnection& c) {
   const std::string expected = ros::message_traits::md5sum<Msg>();
   if (c.md5sum != expected && c.md5sum != "*") {
-    throw std::runtime_error("topic '" + c.topic + "' has " + c.type + " with md5sum " + c.md5sum +
-                             ", expected " + expected);
+    throw std::runtime_error("topic '" + Printable(c.topic) + "' has " + Printable(c.type) +
+                             " with md5sum " + Printable(c.md5sum) + ", expected " + expected);
   }
 }
 

@@ -64,8 +64,8 @@ class BagReader : public LogReader {
         delivered = topic == options_.lidar_topic ? ReadScan(m, message) : ReadImu(m, message);
         ++it_;
       } catch (const std::exception& e) {
-        throw std::runtime_error("bag '" + path_ + "', topic '" + topic + "', message " +
-                                 std::to_string(message_index_) + ": " + e.what());
+        throw std::runtime_error("bag '" + path_ + "', topic '" + detail::Printable(topic) +
+                                 "', message " + std::to_string(message_index_) + ": " + e.what());
       }
       if (delivered) return true;
     }

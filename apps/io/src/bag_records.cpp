@@ -129,9 +129,10 @@ bool BagRecordScanner::Next(BagMessageRecord* record) {
     uint8_t len_bytes[4];
     if (!ReadAt(next_record_, len_bytes, 4)) return Stop("a record header is cut");
     const uint32_t header_len = U32(len_bytes);
-    std::vector<uint8_t> header(header_len + 4);
-    if (header_len > kMaxHeaderBytes || !ReadAt(next_record_ + 4, header.data(), header.size())) {
-      return Stop("a record header is cut or corrupt");
+    if (header_len > kMaxHeaderBytes) return Stop("a record header is corrupt (too long)");
+    std::vector<uint8_t> header(header_len + 4);  // the header and the data length after it
+    if (!ReadAt(next_record_ + 4, header.data(), header.size())) {
+      return Stop("a record header is cut");
     }
     Fields fields;
     if (!ParseFields(header.data(), header_len, &fields)) return Stop("a record header is corrupt");

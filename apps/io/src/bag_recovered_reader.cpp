@@ -45,7 +45,7 @@ class RecoveredBagReader : public LogReader {
           return true;
         }
       } catch (const std::exception& e) {
-        throw std::runtime_error("bag '" + path_ + "', topic '" + topic + "', message " +
+        throw std::runtime_error("bag '" + path_ + "', topic '" + Printable(topic) + "', message " +
                                  std::to_string(recovery_.messages) + ": " + e.what());
       }
     }
@@ -61,8 +61,8 @@ class RecoveredBagReader : public LogReader {
  private:
   void RequireType(const BagConnection& c, const char* type) const {
     if (c.type != type) {
-      throw std::runtime_error("bag '" + path_ + "': topic '" + c.topic + "' has type " + c.type +
-                               ", expected " + type);
+      throw std::runtime_error("bag '" + path_ + "': topic '" + Printable(c.topic) + "' has type " +
+                               Printable(c.type) + ", expected " + type);
     }
   }
 
@@ -86,6 +86,10 @@ class RecoveredBagReader : public LogReader {
       if (record.connection->type != kCloudType) break;  // RequireTopic names the type
       try {
         RequireDefinition<sensor_msgs::PointCloud2>(*record.connection);
+      } catch (const std::runtime_error& e) {
+        throw std::runtime_error("bag '" + path_ + "': " + e.what());
+      }
+      try {
         convention_ = CheckFirstScan(Deserialize<sensor_msgs::PointCloud2>(record), convention_,
                                      path_, options_.lidar_topic);
       } catch (const ros::Exception& e) {

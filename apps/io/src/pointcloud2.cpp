@@ -4,15 +4,18 @@
 #include "hylo/io/pointcloud2.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 
+#include "printable.h"
+
 namespace hylo::io {
 namespace {
+
+using detail::Printable;
 
 constexpr bool kHostIsBigEndian = __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__;
 
@@ -48,15 +51,6 @@ struct PointReaders {
   FieldSlot x, y, z, intensity, ring, time;
   TimeKind time_kind = TimeKind::kNone;
 };
-
-/// A field name as errors show it: names come from the message, and a control character
-/// (a line break, say) would split the one-line error.
-std::string Printable(std::string name) {
-  for (char& c : name) {
-    if (std::iscntrl(static_cast<unsigned char>(c))) c = '?';
-  }
-  return name;
-}
 
 std::string FieldList(const std::vector<PointFieldInfo>& fields) {
   std::ostringstream os;
