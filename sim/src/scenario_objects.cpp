@@ -68,7 +68,9 @@ void Objects::Bay(const Box2& bay) {
   } else if (kind <= 2) {  // a row of insulator columns under a busbar
     const int count = std::clamp(static_cast<int>(length / 3.0), 2, 6);
     const double step = (length - 2.0) / (count - 1);
-    st::Parts* bus = Add("busbar");
+    // By index: the columns' Add calls grow the object list and move the busbar's parts.
+    const std::size_t bus = site_->objects.size();
+    Add("busbar");
     for (int k = 0; k < count; ++k) {
       const V2 xy = center + (k * step - 0.5 * (length - 2.0)) * axis;
       st::AddInsulatorColumn(xy, Ground(xy, 0.2), Add("insulator_column"));
@@ -76,7 +78,7 @@ void Objects::Bay(const Box2& bay) {
     const V2 first = center - 0.5 * (length - 2.0) * axis,
              last = center + 0.5 * (length - 2.0) * axis;
     const double z = std::max(Ground(first, 0.2), Ground(last, 0.2)) + 4.4;
-    bus->push_back(MakeCylinder(At(first, z), At(last, z), 0.05, st::kSteel));
+    site_->objects[bus].parts.push_back(MakeCylinder(At(first, z), At(last, z), 0.05, st::kSteel));
   } else if (kind == 3) {
     const Eigen::Vector3d box(std::min(size.x(), rng_->Uniform(5.0, 12.0)),
                               std::min(size.y(), rng_->Uniform(4.0, 10.0)),

@@ -31,6 +31,7 @@ class Objects {
     V2 min, max;
   };
   double Ground(const V2& xy, double radius) const;
+  /// A new object's parts; the pointer is good until the next Add (the list grows).
   structures::Parts* Add(const std::string& kind, bool in_a = true, bool in_b = true);
   void Bay(const Box2& bay);
   void Gantry(const V2& center, const V2& axis, double span_m);
