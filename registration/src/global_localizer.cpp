@@ -89,6 +89,7 @@ bool GlobalLocalizerOptions::IsValid(std::string* why) const {
           FailOption("refine_score_ratio", refine_score_ratio, "must be in (0, 1]", why)) &&
          CheckAtLeast("fine_hypotheses", fine_hypotheses, 1, "", why) &&
          CheckInRange("ambiguity_inlier_margin", ambiguity_inlier_margin, 0.0, 1.0, why) &&
+         CheckInRange("min_ground_support", min_ground_support, 0.0, 1.0, why) &&
          CheckAtLeast("judge_max_points", judge_max_points, 50, "", why) &&
          CheckAtLeast("judge_icp_iterations", judge_icp_iterations, 1, "", why);
 }

@@ -25,7 +25,8 @@ std::string Describe(const GlobalHypothesis& h) {
   std::ostringstream os;
   const Eigen::Vector3d& t = h.T_refined.translation();
   os << "(" << t.x() << ", " << t.y() << ") score " << h.score << " inliers " << h.inlier_ratio
-     << " plane fitness " << h.plane_fitness_m2 << " fitness " << h.fitness_m2;
+     << " plane fitness " << h.plane_fitness_m2 << " fitness " << h.fitness_m2 << " ground support "
+     << h.ground_support;
   return os.str();
 }
 
@@ -40,6 +41,28 @@ const GlobalHypothesis* RunnerUp(const std::vector<GlobalHypothesis>& hypotheses
     if (best == nullptr || h.inlier_ratio > best->inlier_ratio) best = &h;
   }
   return best;
+}
+
+// The vehicle's own ground returns in `scan_imu`: within kGroundRadiusM horizontally, no
+// higher than the search's clearance above the ground under the sensor (`sensor_height_m`
+// below it). Slopes and ditches around the vehicle keep their downhill part; that is enough
+// to tell whether the vehicle stands on mapped ground.
+PointCloud GroundReturns(const PointCloud& scan_imu, const Eigen::Matrix3d& R_level_imu,
+                         double sensor_height_m, const GlobalLocalizerOptions& options) {
+  constexpr float kGroundRadiusM = 10.0f;  // as the ground estimate under the sensor
+  const float band_m =
+      static_cast<float>(options.ground_clearance_m > 0.0 ? options.ground_clearance_m : 0.3);
+  const float top_z = static_cast<float>(-sensor_height_m) + band_m;
+  const Eigen::Matrix3f R = R_level_imu.cast<float>();
+  PointCloud ground;
+  for (const Eigen::Vector3f& p : scan_imu) {
+    const Eigen::Vector3f q = R * p;
+    const float r = q.head<2>().norm();
+    if (q.allFinite() && r >= options.min_range_m && r <= kGroundRadiusM && q.z() <= top_z) {
+      ground.push_back(p);
+    }
+  }
+  return ground;
 }
 
 }  // namespace
@@ -80,6 +103,8 @@ GlobalLocalizationResult GlobalLocalizer::Localize(const PointCloud& scan_imu,
   const PointCloud scan_coarse = internal::Decimate(
       UniformSample(scan_fine, static_cast<float>(icp_.coarse_voxel_m)), icp_.coarse_max_points);
   const Icp coarse(icp_.coarse_icp);
+  const PointCloud ground_fine =
+      GroundReturns(scan_fine, R_level_imu, result.stats.sensor_height_m, options_);
   std::vector<std::size_t> order;
   const double best_score = result.hypotheses.front().score;
   for (std::size_t i = 0; i < result.hypotheses.size(); ++i) {
@@ -116,6 +141,8 @@ GlobalLocalizationResult GlobalLocalizer::Localize(const PointCloud& scan_imu,
     h.fitness_m2 = r.accepted ? r.fitness_score_m2 : r.best_fitness_score_m2;
     h.plane_fitness_m2 = r.accepted ? r.plane_fitness_m2 : r.best_plane_fitness_m2;
     h.inlier_ratio = r.accepted ? r.inlier_ratio : r.best_inlier_ratio;
+    h.ground_support = internal::MeasureOverlap(ground_fine, map, h.T_refined, icp_).inlier_ratio;
+    if (h.ground_support < options_.min_ground_support) h.passes = false;
   }
 
   // The passing poses, best inlier ratio first; distinct ones counted.

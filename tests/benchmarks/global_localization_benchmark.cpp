@@ -10,8 +10,6 @@
 //   hylo_global_localization_benchmark [--quick] [--count N] [--outside N] [--seed N]
 //       [--json PATH] [--dump CSV] [--only I,J,..] [--verbose] [--no-real]
 
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -220,10 +218,10 @@ void DumpHypotheses(std::FILE* out, const char* group, std::size_t start,
     std::fprintf(
         out,
         "%s,%zu,%zu,%s,%.4f,%.4f,%.3f,%d,%.5f,%.4f,%.5f,%.5f,%.5f,%.4f,%.4f,%.4f,%.4f,%.5f,%.4f,"
-        "%.4f\n",
+        "%.4f,%.4f\n",
         group, start, i, registration::ToString(r.status).c_str(), h.score, err_m, err_deg,
         h.passes ? 1 : 0, h.fitness_m2, h.inlier_ratio, m.fit05, m.trim80, m.trim90, m.median_m,
-        m.in10, m.in20, m.in30, m.plane_fit, m.plane05, m.plane10);
+        m.in10, m.in20, m.in30, m.plane_fit, m.plane05, m.plane10, h.ground_support);
   }
   std::fflush(out);
 }
@@ -384,18 +382,14 @@ int main(int argc, char** argv) {
     }
     std::fprintf(g_dump,
                  "group,start,hyp,status,score,err_m,err_deg,passes,fitness,inliers,"
-                 "fit05,trim80,trim90,median_m,in10,in20,in30,plane_fit,plane05,plane10\n");
+                 "fit05,trim80,trim90,median_m,in10,in20,in30,plane_fit,plane05,plane10,"
+                 "ground_support\n");
   }
   const sim::SimulationOptions sim_options;
   const sim::Site site = sim::BuildSite(sim_options.seed, sim_options.terrain);
   double t0 = NowMs();
-  // Keyed by this build of the benchmark, so a changed pipeline never meets a stale prior.
-  struct stat exe {};
-  ::stat("/proc/self/exe", &exe);
-  const hylo::testing::SimPrior prior = hylo::testing::CachedSimPrior(
-      sim_options, site,
-      std::string(HYLO_BINARY_DIR) + "/global_benchmark_prior_seed1_" +
-          std::to_string(exe.st_mtime) + ".bin");
+  const hylo::testing::SimPrior prior =
+      hylo::testing::CachedSimPriorForThisBuild(sim_options, site, "global_benchmark_prior_seed1");
   std::printf("prior map (SLAM on session A): %zu points, %.1f s\n", prior.points_map.size(),
               (NowMs() - t0) / 1e3);
   benchmarks::Report report;

@@ -1,6 +1,7 @@
 // Global localizer on small synthetic maps with known answers: a yard without symmetry (found
 // from any heading, no guess), two identical yards side by side (ambiguous, nothing accepted),
-// a view of a place not in the map (never accepted), bad input and invalid options; and the
+// a view of a place not in the map (never accepted), a vehicle standing beside the mapped
+// ground (refused), bad input and invalid options; and the
 // GlobalMap raster it searches.
 #include "hylo/registration/global_localizer.h"
 
@@ -64,7 +65,8 @@ std::string Hypotheses(const GlobalLocalizationResult& r) {
     os << "\n  (" << t.x() << ", " << t.y() << ", " << t.z() << ") yaw "
        << std::atan2(h.T_refined(1, 0), h.T_refined(0, 0)) / kDeg << " score " << h.score
        << (h.passes ? " passes" : " fails") << ": inliers " << h.inlier_ratio << " plane fitness "
-       << h.plane_fitness_m2 << " fitness " << h.fitness_m2;
+       << h.plane_fitness_m2 << " fitness " << h.fitness_m2 << " ground support "
+       << h.ground_support;
   }
   return os.str();
 }
@@ -148,6 +150,47 @@ TEST_F(GlobalLocalizerTest, APlaceNotInTheMapIsNeverAccepted) {
   EXPECT_TRUE(r.status == GlobalStatus::kNotFound || r.status == GlobalStatus::kAmbiguous)
       << r.message;
   EXPECT_FALSE(r.hypotheses.empty()) << "the search ran and found look-alikes: " << r.message;
+}
+
+// A vehicle parked where the map holds no ground (a yard mapped from outside: its walls and
+// boxes seen from afar, its floor never driven): the map's structures fit its view, but the
+// ground it stands on is not in the map, so the pose is refused, though it is the true one.
+TEST_F(GlobalLocalizerTest, AVehicleBesideTheMappedGroundIsNotAccepted) {
+  const Eigen::Isometry3d truth = Pose(40.6, 17.2, kSensorHeightM, -121.0);
+  const Eigen::Vector2f at = truth.translation().head<2>().cast<float>();
+  PointCloud map;  // the site without its floor within 9 m, but for a few returns under the
+                   // vehicle (the search needs some ground in its cell to stand a pose there)
+  for (const Eigen::Vector3f& p : points_) {
+    const Eigen::Vector2f d = p.head<2>() - at;
+    const bool floor = p.z() < 0.05f && d.norm() < 9.f && d.cwiseAbs().maxCoeff() > 0.75f;
+    if (!floor) map.push_back(p);
+  }
+  const auto tree = Tree(map);
+  const GlobalMap global_map = GlobalMap::Build(map, GlobalMapOptions());
+  const PointCloud view = View(Site(0.15f, 2, 0.3f), truth, 25.0, 8);
+
+  GlobalLocalizerOptions without_gate = SmallSiteOptions();
+  without_gate.min_ground_support = 0.0;
+  const GlobalLocalizationResult fits =
+      GlobalLocalizer(without_gate, IcpInitializerOptions())
+          .Localize(view, Eigen::Matrix3d::Identity(), global_map, *tree);
+  ASSERT_EQ(fits.status, GlobalStatus::kAccepted) << Hypotheses(fits);
+  EXPECT_LT(TranslationError(fits.T_map_imu, truth), 0.05) << fits.message;
+
+  const GlobalLocalizationResult r =
+      localizer_.Localize(view, Eigen::Matrix3d::Identity(), global_map, *tree);
+  // Not accepted: not found, or ambiguous when a wrong place passes every gate while the
+  // refused true pose explains more of the view (a refused pose still blocks a worse one).
+  EXPECT_TRUE(r.status == GlobalStatus::kNotFound || r.status == GlobalStatus::kAmbiguous)
+      << Hypotheses(r);
+  EXPECT_NE(r.message.find("ground support"), std::string::npos) << r.message;
+  bool true_pose_refined = false;  // ... and judged there, on its ground support
+  for (const GlobalHypothesis& h : r.hypotheses) {
+    if (!h.refined || TranslationError(h.T_refined, truth) > 0.1) continue;
+    true_pose_refined = true;
+    EXPECT_LT(h.ground_support, SmallSiteOptions().min_ground_support);
+  }
+  EXPECT_TRUE(true_pose_refined) << Hypotheses(r);
 }
 
 TEST_F(GlobalLocalizerTest, BadInputIsReportedNotThrown) {

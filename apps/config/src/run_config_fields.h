@@ -215,6 +215,7 @@ void VisitFields(V& v, registration::GlobalLocalizerOptions& o) {
   v("refine_score_ratio", o.refine_score_ratio);
   v("fine_hypotheses", o.fine_hypotheses);
   v("ambiguity_inlier_margin", o.ambiguity_inlier_margin);
+  v("min_ground_support", o.min_ground_support);
   v("judge_max_points", o.judge_max_points);
   v("judge_icp_iterations", o.judge_icp_iterations);
 }

@@ -21,7 +21,9 @@
 //    fine_hypotheses distinct ones with the largest share of points near the map then go
 //    through the ICP initializer from there (fine ICP and point-to-plane steps on a thinned
 //    scan, no local search) and its gates (plane fitness, inlier ratio, constraint). The gates
-//    are the judge:
+//    are the judge, with one of its own: the ground the vehicle stands on must be in the map
+//    (min_ground_support), since a vehicle parked beside the mapped area may still see
+//    enough of the map's structures to pass the others.
 //     - none passes: not found (outside the map, or a view too poor to tell);
 //     - the distinct refined pose with the next best inlier ratio (passing or not) comes
 //       within ambiguity_inlier_margin of the best passing pose's: ambiguous (symmetric bays),
@@ -78,6 +80,11 @@ struct GlobalLocalizerOptions {
                                           ///< and gated, >= 1
   double ambiguity_inlier_margin = 0.05;  ///< a refined runner-up within this inlier ratio of
                                           ///< the passing pose makes the view ambiguous, [0, 1]
+  double min_ground_support = 0.5;        ///< an accepted pose must explain at least this share of
+                                          ///< the vehicle's own ground returns (within 10 m, below
+                                          ///< ground_clearance_m): a vehicle beside the map, not on
+                                          ///< it, sees far structures of the map but ground the map
+                                          ///< never held, [0, 1]
   int judge_max_points = 1500;    ///< scan points in each hypothesis's refinement (at most the
                                   ///< initializer's fine_max_points), >= 50
   int judge_icp_iterations = 30;  ///< at most this many fine ICP iterations there (at most the
@@ -98,6 +105,8 @@ struct GlobalHypothesis {
   double fitness_m2 = 0.0;        ///< initializer fitness at T_refined, m^2 (when refined)
   double plane_fitness_m2 = 0.0;  ///< initializer plane fitness at T_refined, m^2 (when refined)
   double inlier_ratio = 0.0;      ///< initializer inlier ratio at T_refined (when refined)
+  double ground_support = 0.0;    ///< share of the vehicle's ground returns with a map point
+                                  ///< within the inlier distance at T_refined (when refined)
 };
 
 enum class GlobalStatus {
