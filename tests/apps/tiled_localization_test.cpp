@@ -5,7 +5,6 @@
 // behaviours: a hole in the tiles (odometry only, said in events), hybrid additions written
 // back as tiles and loaded by the next session.
 #include <gtest/gtest.h>
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <cmath>
@@ -37,11 +36,7 @@ const sim::Site& SharedSite() {
 // SLAM on session A, cached per build of this test (as tests/estimation/sim_localization_test).
 const SimPrior& SharedPrior() {
   static const SimPrior prior = [] {
-    struct stat exe {};
-    ::stat("/proc/self/exe", &exe);
-    return CachedSimPrior(SimOptions(), SharedSite(),
-                          std::string(HYLO_BINARY_DIR) + "/sim_prior_seed1_tiled_" +
-                              std::to_string(exe.st_mtime) + ".bin");
+    return CachedSimPriorForThisBuild(SimOptions(), SharedSite(), "sim_prior_seed1_tiled");
   }();
   return prior;
 }

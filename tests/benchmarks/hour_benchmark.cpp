@@ -222,9 +222,9 @@ int main(int argc, char** argv) {
   sim::SimulationOptions sim_options;
   if (column_deg > 0.0) sim_options.lidar.column_deg = column_deg;
   sim::Site site = sim::BuildSite(sim_options.seed, sim_options.terrain);
-  const testing::SimPrior prior = testing::CachedSimPrior(
+  const testing::SimPrior prior = testing::CachedSimPriorForThisBuild(
       sim_options, site,
-      "hour_benchmark_prior_seed1_col" + std::to_string(sim_options.lidar.column_deg) + ".bin");
+      "hour_benchmark_prior_seed1_col" + std::to_string(sim_options.lidar.column_deg));
   std::unordered_set<int64_t> prior_cells;
   for (const Eigen::Vector3f& p : prior.points_map) {
     prior_cells.insert(Cell((prior.T_site_map * p.cast<double>()).cast<float>()));

@@ -3,7 +3,6 @@
 // guess off by 2 m and 20 deg, with each back-end, in localization-only and hybrid mode.
 // Prints a table like the paper's Table I. About 40 s of CPU per full session B run.
 #include <gtest/gtest.h>
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <cmath>
@@ -36,13 +35,7 @@ const sim::Site& SharedSite() {
 // SLAM on session A once for every test of this executable.
 const SimPrior& SharedPrior() {
   static const SimPrior prior = [] {
-    // Keyed by what determines it: the simulation's seed and this build of the test (a
-    // rebuilt library relinks the test, so a changed pipeline never meets a stale prior).
-    struct stat exe {};
-    ::stat("/proc/self/exe", &exe);
-    SimPrior p = CachedSimPrior(SimOptions(), SharedSite(),
-                                std::string(HYLO_BINARY_DIR) + "/sim_prior_seed1_" +
-                                    std::to_string(exe.st_mtime) + ".bin");
+    SimPrior p = CachedSimPriorForThisBuild(SimOptions(), SharedSite(), "sim_prior_seed1");
     std::printf("prior map from SLAM on session A: %zu points, ATE %.4f m\n", p.points_map.size(),
                 p.slam_ate.rmse_m);
     return p;
@@ -55,8 +48,8 @@ Eigen::Isometry3d PerturbedStart(const std::vector<evaluation::TimedPose>& truth
                                  double dy, double dyaw_deg) {
   Eigen::Isometry3d guess = SharedPrior().T_site_map.inverse() * truth_site.front().T_world_body;
   guess.translation() += Eigen::Vector3d(dx, dy, 0.0);
-  guess.linear() = Eigen::AngleAxisd(dyaw_deg * kDegToRad, Eigen::Vector3d::UnitZ()) *
-                   guess.linear();
+  guess.linear() =
+      Eigen::AngleAxisd(dyaw_deg * kDegToRad, Eigen::Vector3d::UnitZ()) * guess.linear();
   return guess;
 }
 
@@ -93,11 +86,10 @@ struct LocalizationRun {
 };
 
 // Runs session B (options' duration) localizing in the shared prior from `guess`.
-LocalizationRun RunSessionB(const sim::SimulationOptions& sim_options,
-                            const estimation::OdometryPipelineOptions& options,
-                            const std::optional<Eigen::Isometry3d>& guess,
-                            const std::function<void(std::size_t, estimation::OdometryPipeline*)>&
-                                before_scan = {}) {
+LocalizationRun RunSessionB(
+    const sim::SimulationOptions& sim_options, const estimation::OdometryPipelineOptions& options,
+    const std::optional<Eigen::Isometry3d>& guess,
+    const std::function<void(std::size_t, estimation::OdometryPipeline*)>& before_scan = {}) {
   LocalizationRun run;
   run.sink = std::make_unique<LocalizationSink>(options, 0.1f);
   run.sink->pipeline.SetPriorMap(SharedPrior().points_map);
@@ -136,10 +128,10 @@ void PrintTableRow(const char* mode, Estimator::Backend backend, const Localizat
 TEST_P(SimLocalization, LocalizationOnlyFromAGuessOff2mAnd20Deg) {
   const sim::SimulationOptions sim_options = SimOptions();
   const Eigen::Isometry3d guess = PerturbedStart(SessionStartTruth(sim_options), 1.4, -1.4, 20.0);
-  const LocalizationRun run = RunSessionB(sim_options, LocalizationOptions(GetParam(), -1.0), guess);
+  const LocalizationRun run =
+      RunSessionB(sim_options, LocalizationOptions(GetParam(), -1.0), guess);
   const auto& pipeline = run.sink->pipeline;
-  ASSERT_NE(pipeline.status(), estimation::OdometryPipeline::Status::kFailed)
-      << pipeline.message();
+  ASSERT_NE(pipeline.status(), estimation::OdometryPipeline::Status::kFailed) << pipeline.message();
   ASSERT_FALSE(pipeline.events().empty());
   EXPECT_EQ(pipeline.events().front().kind, LocalizationEvent::Kind::kInitialized);
   EXPECT_FALSE(HasEvent(pipeline, LocalizationEvent::Kind::kHybridStarted));
@@ -166,8 +158,7 @@ TEST_P(SimLocalization, HybridModeExtendsTheMapOntoTheTrueSurfaces) {
   const Eigen::Isometry3d guess = PerturbedStart(SessionStartTruth(sim_options), -1.4, 1.4, -20.0);
   const LocalizationRun run = RunSessionB(sim_options, LocalizationOptions(GetParam(), 5.0), guess);
   const auto& pipeline = run.sink->pipeline;
-  ASSERT_NE(pipeline.status(), estimation::OdometryPipeline::Status::kFailed)
-      << pipeline.message();
+  ASSERT_NE(pipeline.status(), estimation::OdometryPipeline::Status::kFailed) << pipeline.message();
   EXPECT_TRUE(HasEvent(pipeline, LocalizationEvent::Kind::kHybridStarted));
   ASSERT_TRUE(run.ate.ok) << run.ate.message;
   PrintTableRow("hybrid (5 s)", GetParam(), run);
@@ -196,8 +187,10 @@ TEST_P(SimLocalization, HybridModeExtendsTheMapOntoTheTrueSurfaces) {
   }
   ASSERT_GT(count, 200u) << "hybrid mode added no points in the annex";
   const double mean_m = sum_m / static_cast<double>(count);
-  std::printf("hybrid [%s]: %zu points added in the annex, mean distance to the true surfaces "
-              "%.4f m\n", estimation::ToString(GetParam()).c_str(), count, mean_m);
+  std::printf(
+      "hybrid [%s]: %zu points added in the annex, mean distance to the true surfaces "
+      "%.4f m\n",
+      estimation::ToString(GetParam()).c_str(), count, mean_m);
   EXPECT_LE(mean_m, 0.05);
 }
 
@@ -226,13 +219,12 @@ TEST(SimRelocalization, ARequestNearTheTruePoseIsAccepted) {
         // What a user's /initialpose would be: near, not exact.
         Eigen::Isometry3d request(pipeline->estimator().state().T_map_imu().Matrix());
         request.translation() += Eigen::Vector3d(0.8, -0.5, 0.0);
-        request.linear() = Eigen::AngleAxisd(8.0 * kDegToRad, Eigen::Vector3d::UnitZ()) *
-                           request.linear();
+        request.linear() =
+            Eigen::AngleAxisd(8.0 * kDegToRad, Eigen::Vector3d::UnitZ()) * request.linear();
         pipeline->RequestRelocalization(request);
       });
   const auto& pipeline = run.sink->pipeline;
-  ASSERT_NE(pipeline.status(), estimation::OdometryPipeline::Status::kFailed)
-      << pipeline.message();
+  ASSERT_NE(pipeline.status(), estimation::OdometryPipeline::Status::kFailed) << pipeline.message();
   EXPECT_TRUE(HasEvent(pipeline, LocalizationEvent::Kind::kRelocalized));
   ASSERT_TRUE(run.ate.ok);
   EXPECT_LE(run.ate.rmse_m, 0.03);
@@ -244,15 +236,15 @@ TEST(SimRelocalization, ARequestNearTheTruePoseIsAccepted) {
 
 TEST(SimRelocalization, ARequestAtAWrongPlaceIsRejectedAndTrackingContinues) {
   const auto truth = SessionStartTruth(ShortB());
-  const LocalizationRun run = RunSessionB(
-      ShortB(), LocalizationOptions(Estimator::Backend::kIeskf, -1.0),
-      PerturbedStart(truth, 0.5, 0.5, 5.0),
-      [](std::size_t scan, estimation::OdometryPipeline* pipeline) {
-        if (scan != 150) return;
-        Eigen::Isometry3d wrong(pipeline->estimator().state().T_map_imu().Matrix());
-        wrong.translation() += Eigen::Vector3d(35.0, 20.0, 0.0);
-        pipeline->RequestRelocalization(wrong);
-      });
+  const LocalizationRun run =
+      RunSessionB(ShortB(), LocalizationOptions(Estimator::Backend::kIeskf, -1.0),
+                  PerturbedStart(truth, 0.5, 0.5, 5.0),
+                  [](std::size_t scan, estimation::OdometryPipeline* pipeline) {
+                    if (scan != 150) return;
+                    Eigen::Isometry3d wrong(pipeline->estimator().state().T_map_imu().Matrix());
+                    wrong.translation() += Eigen::Vector3d(35.0, 20.0, 0.0);
+                    pipeline->RequestRelocalization(wrong);
+                  });
   const auto& pipeline = run.sink->pipeline;
   ASSERT_NE(pipeline.status(), estimation::OdometryPipeline::Status::kFailed);
   EXPECT_TRUE(HasEvent(pipeline, LocalizationEvent::Kind::kRelocalizationFailed));
@@ -304,13 +296,11 @@ TEST_P(SimGlobalStart, StartsWithoutAUsableGuess) {
   const LocalizationRun run =
       RunSessionB(ShortB(), LocalizationOptions(Estimator::Backend::kIeskf, -1.0), guess);
   const auto& pipeline = run.sink->pipeline;
-  ASSERT_NE(pipeline.status(), estimation::OdometryPipeline::Status::kFailed)
-      << pipeline.message();
+  ASSERT_NE(pipeline.status(), estimation::OdometryPipeline::Status::kFailed) << pipeline.message();
   ASSERT_FALSE(pipeline.events().empty());
   const LocalizationEvent& start = pipeline.events().front();
   EXPECT_EQ(start.kind, LocalizationEvent::Kind::kInitialized);
-  EXPECT_NE(start.message.find("global localization accepted"), std::string::npos)
-      << start.message;
+  EXPECT_NE(start.message.find("global localization accepted"), std::string::npos) << start.message;
   if (with_far_guess) {
     EXPECT_NE(start.message.find("guess rejected"), std::string::npos) << start.message;
   }
@@ -362,8 +352,7 @@ TEST(SimRelocalization, AKidnappedVehicleIsFoundAgainOverTheWholeMap) {
   sim::SessionSimulator(sim_options, SharedSite(), sim::SessionId::kB).Run(&sink);
   sink.Finish();
   const auto& pipeline = sink.pipeline;
-  ASSERT_NE(pipeline.status(), estimation::OdometryPipeline::Status::kFailed)
-      << pipeline.message();
+  ASSERT_NE(pipeline.status(), estimation::OdometryPipeline::Status::kFailed) << pipeline.message();
 
   // The jump, in the prior's frame: how far the vehicle was moved.
   const Eigen::Isometry3d T_map_site = SharedPrior().T_site_map.inverse();

@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -103,8 +104,8 @@ inline SimPrior BuildSimPrior(const sim::SimulationOptions& sim_options, const s
   // start attitude off by a fraction of a degree would tilt the whole map by it, and tests
   // that compare absolute poses (global localization) would measure that tilt, not themselves.
   const evaluation::AssociatedPoses pairs = evaluation::Associate(estimate, sink.truth);
-  const evaluation::AlignmentResult fit = evaluation::AlignTrajectories(
-      pairs.estimate, pairs.reference, evaluation::Alignment::kSE3);
+  const evaluation::AlignmentResult fit =
+      evaluation::AlignTrajectories(pairs.estimate, pairs.reference, evaluation::Alignment::kSE3);
   Eigen::Isometry3d T_site_imu;
   if (fit.ok) {
     prior.T_site_map = fit.T_reference_estimate;
@@ -146,6 +147,33 @@ inline SimPrior CachedSimPrior(const sim::SimulationOptions& sim_options, const 
   }
   if (lock >= 0) ::close(lock);  // releases the lock
   return prior;
+}
+
+/// CachedSimPrior keyed by what determines the prior: `name` (the options it was built with)
+/// and this build of the executable (a rebuilt library relinks it, so a changed pipeline never
+/// meets a stale prior). The file lies next to the executable, as `<name>_<mtime>.bin`; the
+/// caches of earlier builds under the same name (~14 MB each) are removed.
+inline SimPrior CachedSimPriorForThisBuild(const sim::SimulationOptions& sim_options,
+                                           const sim::Site& site, const std::string& name) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", error);
+  const fs::path dir = error ? fs::current_path() : exe.parent_path();
+  const std::string stamp =
+      error ? std::string("0")
+            : std::to_string(fs::last_write_time(exe, error).time_since_epoch().count());
+  const std::string current = name + "_" + stamp + ".bin";
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir, error)) {
+    const std::string file = entry.path().filename().string();
+    const bool same_name = file.rfind(name + "_", 0) == 0;
+    const std::string rest = same_name ? file.substr(name.size() + 1) : std::string();
+    const std::size_t digits = rest.find_first_not_of("0123456789");
+    const bool earlier = digits != std::string::npos && digits > 0 &&
+                         (rest.substr(digits) == ".bin" || rest.substr(digits) == ".bin.lock") &&
+                         rest.compare(0, digits, stamp) != 0;
+    if (earlier) fs::remove(entry.path(), error);
+  }
+  return CachedSimPrior(sim_options, site, (dir / current).string());
 }
 
 }  // namespace hylo::testing

@@ -6,7 +6,6 @@
 // localizer's poses are absolute), which is where a time offset shows; after an SE(3)
 // alignment part of it would be absorbed into the fitted transform. Prints the three ATEs.
 #include <gtest/gtest.h>
-#include <sys/stat.h>
 
 #include <cmath>
 #include <map>
@@ -40,11 +39,7 @@ const sim::Site& SharedSite() {
 // SLAM on the synchronised session A once per build of this test (see sim_localization_test).
 const SimPrior& SharedPrior() {
   static const SimPrior prior = [] {
-    struct stat exe {};
-    ::stat("/proc/self/exe", &exe);
-    return CachedSimPrior(SimOptions(0.0), SharedSite(),
-                          std::string(HYLO_BINARY_DIR) + "/sim_prior_offset_seed1_" +
-                              std::to_string(exe.st_mtime) + ".bin");
+    return CachedSimPriorForThisBuild(SimOptions(0.0), SharedSite(), "sim_prior_offset_seed1");
   }();
   return prior;
 }
