@@ -7,8 +7,8 @@
 #         the ROS node's input queue (callbacks on two threads), concurrent ikd-tree queries,
 #         a tiled prior's background loader (TileStreamer),
 #         map crafting's MLS workers (std::thread, and PCL's OpenMP loop)
-# Prints the wall and CPU time of each part. The long suites (simulated sessions, real data, the
-# CLI end to end: `long_tests` below, matched on the test's executable or name) are left out of
+# Prints the wall and CPU time of each part. The long suites (simulated sessions and drives, real
+# data, the CLI end to end: `long_tests` below, matched on the test's executable or name) are left out of
 # the asan run unless HYLO_SANITIZE_LONG=1. HYLO_SANITIZE_JOBS sets build and test parallelism.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -60,6 +60,9 @@ if [ "$what" = asan ] || [ "$what" = all ]; then
   long_tests='sim_(odometry|localization|imu_faults|time_offset)_test|sliding_window_sim_test|'
   long_tests+='balm_.*_test|handheld_.*|.*_data_test|.*_site_test|site_mapping_test|'
   long_tests+='demo_quick_test|(mapping|localize|compare)_cli_test|ros_node_integration_test|'
+  # Simulated drives judged on accuracy: minutes each, and the smoother's per-scan wall-time
+  # budget (real time) does not fit a sanitizer's slowdown, so their figures mean nothing here.
+  long_tests+='scenario_matrix_test|tiled_localization_test|'
   long_tests+='install_and_consume|.*_smoke'
   exclude=()
   if [ "${HYLO_SANITIZE_LONG:-0}" != 1 ]; then
