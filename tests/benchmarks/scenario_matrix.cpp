@@ -26,6 +26,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -238,6 +239,7 @@ hylo::testing::ScenarioRunOptions RunOptions(const Args& args) {
   o.slam = args.slam;
   o.localization = args.localization;
   o.trace_dir = args.trace_dir;
+  if (!o.trace_dir.empty()) std::filesystem::create_directories(o.trace_dir);
   return o;
 }
 

@@ -185,6 +185,16 @@ void WriteTrace(const std::string& path, const PipelineRun& run,
   }
 }
 
+// The localization events (start, searches, losses) one per line: why a start took long or
+// failed, attempt by attempt.
+void WriteEvents(const std::string& path, const PipelineRun& run) {
+  std::ofstream out(path);
+  for (const estimation::LocalizationEvent& e : run.pipeline.events()) {
+    out << 1e-9 * double(e.t_ns) << ' ' << estimation::ToString(e.kind) << ": " << e.message
+        << '\n';
+  }
+}
+
 std::string TracePath(const ScenarioRunOptions& options, uint64_t number, const BackendFigures& run,
                       const char* mode) {
   return options.trace_dir + "/trace_" + std::to_string(number) + "_" + run.variant + "_" +
@@ -300,6 +310,8 @@ ScenarioFigures RunScenario(const sim::Scenario& scenario, const ScenarioRunOpti
     if (!options.trace_dir.empty()) {
       WriteTrace(TracePath(options, scenario.number, figures.runs[k], "localization"),
                  *localization[k], truth_b.poses);
+      WriteEvents(TracePath(options, scenario.number, figures.runs[k], "events"),
+                  *localization[k]);
     }
   }
   return figures;
