@@ -7,9 +7,10 @@
 #         the ROS node's input queue (callbacks on two threads), concurrent ikd-tree queries,
 #         a tiled prior's background loader (TileStreamer),
 #         map crafting's MLS workers (std::thread, and PCL's OpenMP loop)
-# Prints the wall and CPU time of each part. The long suites (simulated sessions and drives, real
-# data, the CLI end to end: `long_tests` below, matched on the test's executable or name) are left out of
-# the asan run unless HYLO_SANITIZE_LONG=1. HYLO_SANITIZE_JOBS sets build and test parallelism.
+# Prints the wall and CPU time of each part. The long suites (simulated sessions and drives,
+# real data, the CLI end to end: `long_tests` below, matched on the test's executable or name)
+# are left out of the asan run unless HYLO_SANITIZE_LONG=1. HYLO_SANITIZE_JOBS sets build and
+# test parallelism.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 what="${1:-all}"
@@ -50,7 +51,8 @@ failed=0
 
 if [ "$what" = asan ] || [ "$what" = all ]; then
   # halt_on_error: the first report fails the test; UBSan prints a stack with its report.
-  export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1"
+  export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:strict_string_checks=1"
+  ASAN_OPTIONS+=":detect_stack_use_after_return=1"
   export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
   # Benchmarks are left out: their figures mean nothing under a sanitizer.
   configure build-asan "-fsanitize=address,undefined -fno-sanitize-recover=all" \
