@@ -26,6 +26,13 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::stri
   if (pid_ < 0) throw std::runtime_error("fork failed for " + argv.front());
   if (pid_ == 0) {
     ::setpgid(0, 0);
+    // Never the test's stdin: a child that reads keys from it (`rosbag play` pauses on a
+    // space) would depend on whatever the runner feeds the tests.
+    const int null_fd = ::open("/dev/null", O_RDONLY);
+    if (null_fd >= 0) {
+      ::dup2(null_fd, STDIN_FILENO);
+      ::close(null_fd);
+    }
     const int fd = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd >= 0) {
       ::dup2(fd, STDOUT_FILENO);

@@ -15,7 +15,8 @@ namespace hylo::testing {
 
 class ChildProcess {
  public:
-  /// Starts argv[0] (searched in PATH when it has no '/'); stdout and stderr go to `log_path`.
+  /// Starts argv[0] (searched in PATH when it has no '/'); stdin is /dev/null, stdout and
+  /// stderr go to `log_path`.
   /// Throws std::runtime_error when fork fails.
   ChildProcess(const std::vector<std::string>& argv, const std::string& log_path);
   ~ChildProcess();

@@ -89,18 +89,11 @@ bool RosGraph::StartNode(const std::vector<std::string>& params, std::string* er
 }
 
 void RosGraph::StartBag(const std::string& bag) {
-  // -d: after advertising, give the node's subscribers time to connect before publishing.
-  player_ = std::make_unique<ChildProcess>(
-      std::vector<std::string>{"rosbag", "play", "--quiet", "-d", "2", bag},
-      dir_ + "/rosbag.log");
+  player_ = std::make_unique<BagPlayer>(*nh_, bag, seconds(20));
 }
 
 bool RosGraph::WaitForPlayer(std::string* error) {
-  const std::optional<int> code = player_->Wait(seconds(90));
-  if (!code || *code != 0) {
-    *error = "rosbag play failed:\n" + Tail(player_->log_path());
-    return false;
-  }
+  if (!player_->Wait(seconds(90), error)) return false;
   // The node may still be working through its queue: wait until the odometry stops growing.
   std::size_t count = 0;
   WaitFor([&] {

@@ -1,8 +1,9 @@
 #pragma once
 // A private ROS graph for one integration test process: roscore on a free loopback port
-// (ROS_MASTER_URI / ROS_HOSTNAME / ROS_HOME set for every child), hylo_node, `rosbag play`,
-// and this process as a ROS client collecting the node's odometry, /tf and health. Children
-// are stopped by the destructor, node and player before the master, on every exit path.
+// (ROS_MASTER_URI / ROS_HOSTNAME / ROS_HOME set for every child), hylo_node, a bag player
+// (bag_player.h), and this process as a ROS client collecting the node's odometry, /tf and
+// health. The player, the node and the master are stopped by the destructor, in that order,
+// on every exit path.
 // ros::init runs once per process: one RosGraph per test process (ctest runs each case alone).
 
 #include <nav_msgs/Odometry.h>
@@ -18,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "bag_player.h"
 #include "child_process.h"
 #include "hylo/evaluation/trajectory_metrics.h"
 
@@ -46,8 +48,8 @@ class RosGraph {
   /// Starts hylo_node with `params` ("_name:=value") and subscribes to its outputs; false
   /// with the node's log when it exits or does not advertise within 20 s.
   bool StartNode(const std::vector<std::string>& params, std::string* error);
-  /// Plays `bag` to the end (rosbag play, 2 s for subscribers to connect first), then waits
-  /// until the node's odometry stops growing. False with the player's log on failure.
+  /// Plays `bag` to the end (once the node subscribed), then waits until the node's odometry
+  /// stops growing. False with why on failure.
   bool PlayBag(const std::string& bag, std::string* error);
   /// Starts the bag without waiting (see WaitForPlayer).
   void StartBag(const std::string& bag);
@@ -61,7 +63,8 @@ class RosGraph {
 
  private:
   std::string dir_;
-  std::unique_ptr<ChildProcess> roscore_, node_, player_;
+  std::unique_ptr<ChildProcess> roscore_, node_;
+  std::unique_ptr<BagPlayer> player_;
   std::unique_ptr<ros::NodeHandle> nh_;
   std::unique_ptr<ros::AsyncSpinner> spinner_;
   std::vector<ros::Subscriber> subscribers_;

@@ -1,9 +1,9 @@
-// End to end through ROS: a real roscore on loopback, a simulator bag played by `rosbag play`,
+// End to end through ROS: a real roscore on loopback, a simulator bag played to ROS topics (bag_player.h),
 // hylo_node, and this test as a ROS client (ros_graph.h). SLAM: the odometry's ATE after
 // SE(3) alignment and the REP-105 tree map → odom → base_link. Localization: a prior map
 // moved to UTM-like coordinates, the odometry compared with the truth *without* alignment
 // (the published map frame is the file's), and a relocalization requested through the
-// service mid-run. Skipped, visibly, when roscore or rosbag are missing.
+// service mid-run. Skipped, visibly, when roscore is missing.
 
 #include <gtest/gtest.h>
 #include <nav_msgs/OccupancyGrid.h>
@@ -38,9 +38,8 @@ constexpr double kLocalizationErrorBoundM = 0.15;  // `hylo localize`: ~0.002 m 
 class RosNodeIntegration : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (hylo::testing::FindInPath("roscore").empty() ||
-        hylo::testing::FindInPath("rosbag").empty()) {
-      GTEST_SKIP() << "roscore or rosbag not in PATH (Debian: ros-core; scripts/setup.sh)";
+    if (hylo::testing::FindInPath("roscore").empty()) {
+      GTEST_SKIP() << "roscore not in PATH (Debian: ros-core; scripts/setup.sh)";
     }
     // roscpp cannot be initialised twice in a process; ctest runs each case alone.
     static bool ros_used_in_this_process = false;
