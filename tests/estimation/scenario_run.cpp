@@ -185,6 +185,22 @@ void WriteTrace(const std::string& path, const PipelineRun& run,
   }
 }
 
+// Each scan's lidar update, one per line: time since the first scan (s), matches of points
+// offered, applied, degenerate, the translation (0..1) and rotation (m²) information per match,
+// RMS residual (m), iterations, map points.
+void WriteUpdates(const std::string& path, const PipelineRun& run) {
+  std::ofstream out(path);
+  if (run.results.empty()) return;
+  const int64_t t0_ns = run.results.front().t_ns;
+  for (const estimation::ScanResult& r : run.results) {
+    const estimation::UpdateSummary& u = r.update;
+    out << 1e-9 * double(r.t_ns - t0_ns) << ' ' << u.num_matches << ' ' << u.num_points << ' '
+        << u.applied << ' ' << u.degenerate << ' ' << u.min_translation_information << ' '
+        << u.min_rotation_information << ' ' << u.rms_residual_m << ' ' << u.iterations << ' '
+        << r.map_points << '\n';
+  }
+}
+
 // The localization events (start, searches, losses) one per line: why a start took long or
 // failed, attempt by attempt.
 void WriteEvents(const std::string& path, const PipelineRun& run) {
@@ -273,6 +289,7 @@ ScenarioFigures RunScenario(const sim::Scenario& scenario, const ScenarioRunOpti
     figures.runs[k].slam =
         Score(*slam[k], truth_a.poses, evaluation::Alignment::kSE3, summary_a.scans);
     if (!options.trace_dir.empty()) {
+      WriteUpdates(TracePath(options, scenario.number, figures.runs[k], "slam_updates"), *slam[k]);
       WriteTrace(TracePath(options, scenario.number, figures.runs[k], "slam"), *slam[k],
                  truth_a.poses);
     }
