@@ -1,8 +1,5 @@
 #include "bag_player.h"
 
-#include <sensor_msgs/Imu.h>
-#include <sensor_msgs/PointCloud2.h>
-
 #include <algorithm>
 #include <exception>
 #include <limits>
@@ -14,25 +11,6 @@
 #include "hylo/io/ros_bridge.h"
 
 namespace hylo::testing {
-
-namespace {
-
-// As the bag writer puts an IMU sample in a message (sensor_msgs/Imu without orientation).
-sensor_msgs::Imu ImuMessage(const ImuSample& imu) {
-  sensor_msgs::Imu msg;
-  msg.header.stamp = io::ros_bridge::ToRosTime(imu.t_ns);
-  msg.header.frame_id = "imu";
-  msg.orientation_covariance[0] = -1.0;
-  msg.linear_acceleration.x = imu.accel_imu.x();
-  msg.linear_acceleration.y = imu.accel_imu.y();
-  msg.linear_acceleration.z = imu.accel_imu.z();
-  msg.angular_velocity.x = imu.gyro_imu.x();
-  msg.angular_velocity.y = imu.gyro_imu.y();
-  msg.angular_velocity.z = imu.gyro_imu.z();
-  return msg;
-}
-
-}  // namespace
 
 BagPlayer::BagPlayer(ros::NodeHandle& nh, const std::string& bag_path,
                      std::chrono::milliseconds connect_timeout)
@@ -79,7 +57,7 @@ void BagPlayer::Play(std::chrono::milliseconds connect_timeout) {
       latest_t_ns = std::max(latest_t_ns, t_ns);
       if (!SleepUntil(start + std::chrono::nanoseconds(latest_t_ns - first_t_ns))) return;
       if (is_imu) {
-        imu_.publish(ImuMessage(message.imu));
+        imu_.publish(io::ros_bridge::ToRos(message.imu, "imu"));
       } else {
         io::PointCloud2Message cloud =
             io::EncodePointCloud2(message.scan, reader->time_convention());

@@ -53,17 +53,8 @@ BagWriter::~BagWriter() {
 
 void BagWriter::WriteImu(const std::string& topic, const ImuSample& imu,
                          const std::string& frame_id, int64_t receive_t_ns) {
-  sensor_msgs::Imu msg;
-  msg.header.stamp = ros_bridge::ToRosTime(imu.t_ns);
-  msg.header.frame_id = frame_id;
-  msg.orientation_covariance[0] = -1.0;  // sensor_msgs/Imu: "no orientation estimate"
-  msg.linear_acceleration.x = imu.accel_imu.x();
-  msg.linear_acceleration.y = imu.accel_imu.y();
-  msg.linear_acceleration.z = imu.accel_imu.z();
-  msg.angular_velocity.x = imu.gyro_imu.x();
-  msg.angular_velocity.y = imu.gyro_imu.y();
-  msg.angular_velocity.z = imu.gyro_imu.z();
-  impl_->Write(topic, receive_t_ns >= 0 ? receive_t_ns : imu.t_ns, msg);
+  impl_->Write(topic, receive_t_ns >= 0 ? receive_t_ns : imu.t_ns,
+               ros_bridge::ToRos(imu, frame_id));
 }
 
 void BagWriter::WriteScan(const std::string& topic, const LidarScan& scan,

@@ -91,6 +91,22 @@ inline ImuSample FromRos(const sensor_msgs::Imu& msg, double accel_scale) {
   return imu;
 }
 
+/// The message of an IMU sample (accelerations as they are, m/s²), without an orientation
+/// estimate (orientation_covariance[0] = -1, as sensor_msgs/Imu defines).
+inline sensor_msgs::Imu ToRos(const ImuSample& imu, const std::string& frame_id) {
+  sensor_msgs::Imu msg;
+  msg.header.stamp = ToRosTime(imu.t_ns);
+  msg.header.frame_id = frame_id;
+  msg.orientation_covariance[0] = -1.0;
+  msg.linear_acceleration.x = imu.accel_imu.x();
+  msg.linear_acceleration.y = imu.accel_imu.y();
+  msg.linear_acceleration.z = imu.accel_imu.z();
+  msg.angular_velocity.x = imu.gyro_imu.x();
+  msg.angular_velocity.y = imu.gyro_imu.y();
+  msg.angular_velocity.z = imu.gyro_imu.z();
+  return msg;
+}
+
 /// The message's bytes in the plain mirror (moved: pass an rvalue to avoid copying the points).
 inline PointCloud2Message FromRos(sensor_msgs::PointCloud2 msg) {
   PointCloud2Message cloud;
