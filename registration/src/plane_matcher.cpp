@@ -1,6 +1,7 @@
 #include "hylo/registration/plane_matcher.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -12,6 +13,8 @@ bool PlaneMatcherOptions::IsValid(std::string* why) const {
   std::ostringstream os;
   if (num_neighbors < 3) {
     os << "num_neighbors = " << num_neighbors << ": must be >= 3 (a plane needs 3 points)";
+  } else if (line_like_neighbors < 0) {
+    os << "line_like_neighbors = " << line_like_neighbors << ": must be >= 0";
   } else if (!(max_neighbor_distance_m > 0.0) || !std::isfinite(max_neighbor_distance_m)) {
     os << "max_neighbor_distance_m = " << max_neighbor_distance_m << ": must be finite and > 0";
   } else if (!(planarity_threshold_m > 0.0) || !std::isfinite(planarity_threshold_m)) {
@@ -25,7 +28,9 @@ bool PlaneMatcherOptions::IsValid(std::string* why) const {
   return false;
 }
 
-bool FitPlane(const std::vector<Neighbor>& points, double planarity_threshold_m, Plane* plane) {
+bool FitPlane(const std::vector<Neighbor>& points, double planarity_threshold_m, Plane* plane,
+              double* across_m) {
+  if (across_m != nullptr) *across_m = 0.0;
   if (points.size() < 3) return false;
   // Centre on the first point before accumulating so that large map coordinates do not
   // cancel in the covariance.
@@ -42,6 +47,7 @@ bool FitPlane(const std::vector<Neighbor>& points, double planarity_threshold_m,
   const Eigen::Matrix3d cov = outer / count - mean * mean.transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
   eig.computeDirect(cov);
+  if (across_m != nullptr) *across_m = std::sqrt(std::max(eig.eigenvalues()(1), 0.0));
   const Eigen::Vector3d normal = eig.eigenvectors().col(0).normalized();
   // A line (two small eigenvalues) has no defined normal.
   if (!(eig.eigenvalues()(1) > 1e-8) || !normal.allFinite()) return false;
@@ -65,9 +71,19 @@ PlaneMatcher::PlaneMatcher(const NeighborSearch& map, const PlaneMatcherOptions&
 
 bool PlaneMatcher::Match(const Eigen::Vector3d& point_map, Plane* plane) const {
   thread_local std::vector<Neighbor> neighbors;
-  map_.KNearest(point_map.cast<float>(), options_.num_neighbors,
-                static_cast<float>(options_.max_neighbor_distance_m), &neighbors);
+  const Eigen::Vector3f query = point_map.cast<float>();
+  const auto reach_m = static_cast<float>(options_.max_neighbor_distance_m);
+  map_.KNearest(query, options_.num_neighbors, reach_m, &neighbors);
   if (static_cast<int>(neighbors.size()) < options_.num_neighbors) return false;
+  double across_m = 0.0;
+  const bool fitted = FitPlane(neighbors, options_.planarity_threshold_m, plane, &across_m);
+  if (across_m >= options_.planarity_threshold_m ||
+      options_.line_like_neighbors <= options_.num_neighbors) {
+    return fitted;
+  }
+  // Along a line: reach across it (see PlaneMatcherOptions::line_like_neighbors).
+  map_.KNearest(query, options_.line_like_neighbors, reach_m, &neighbors);
+  if (static_cast<int>(neighbors.size()) < options_.line_like_neighbors) return false;
   return FitPlane(neighbors, options_.planarity_threshold_m, plane);
 }
 

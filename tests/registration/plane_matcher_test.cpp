@@ -56,10 +56,18 @@ TEST(PlaneMatcher, MatchesNoisyPlaneAndAgreesWithBruteForceFit) {
     Plane plane;
     if (!matcher.Match(q, &plane)) continue;
     ++matched;
+    // The matcher's rule by hand: five neighbours, twelve when the five lie along a line.
     std::vector<Neighbor> nb;
     map.KNearest(q.cast<float>(), 5, 2.f, &nb);
     Plane reference;
-    ASSERT_TRUE(FitPlane(nb, 0.1f, &reference));
+    double across_m = 0.0;
+    const bool fitted = FitPlane(nb, 0.1, &reference, &across_m);
+    if (across_m < 0.1) {
+      map.KNearest(q.cast<float>(), 12, 2.f, &nb);
+      ASSERT_TRUE(FitPlane(nb, 0.1, &reference));
+    } else {
+      ASSERT_TRUE(fitted);
+    }
     EXPECT_NEAR(std::abs(plane.normal.dot(reference.normal)), 1.0, 1e-9);
     // The signed distance is the offset along the normal: |r| ≈ 0.3 cos(tilt).
     EXPECT_NEAR(std::abs(plane.Distance(q)), 0.3 / std::sqrt(1.0 + 0.04 + 0.01), 0.03);
@@ -86,12 +94,58 @@ TEST(PlaneMatcher, RejectsFarAndNonPlanarNeighbourhoods) {
   EXPECT_FALSE(matcher.Match(Eigen::Vector3d(20.0, 20.0, 0.0), &plane));  // out of range
 }
 
+// Two rings of a spinning head on flat ground (z = 0): points 0.5 m apart along x, the
+// rings 1.2 m apart, ring A with a ±1 cm zigzag in height. A point above ring A has its five
+// nearest neighbours on ring A alone.
+PointCloud TwoRingsOnTheGround() {
+  PointCloud points;
+  for (int i = -20; i <= 20; ++i) {
+    points.emplace_back(0.5f * i, 0.f, (i % 2 == 0) ? 0.01f : -0.01f);  // ring A
+    points.emplace_back(0.5f * i, 1.2f, 0.f);                           // ring B
+  }
+  return points;
+}
+
+TEST(FitPlane, ReportsTheSpreadAcrossTheMainDirection) {
+  std::mt19937 rng(7);
+  std::vector<Neighbor> plane_points;
+  for (const auto& p : NoisyPlane(50, 0.0, &rng)) plane_points.push_back({p, 0.f});
+  Plane plane;
+  double across_m = 0.0;
+  ASSERT_TRUE(FitPlane(plane_points, 0.01, &plane, &across_m));
+  EXPECT_GT(across_m, 3.0);  // uniform over 20 m x 20 m: ~5.8 m
+  std::vector<Neighbor> ring;
+  for (int i = 0; i < 5; ++i) ring.push_back({{0.5f * i, 0.f, (i % 2 == 0) ? 0.01f : -0.01f}, 0.f});
+  ASSERT_TRUE(FitPlane(ring, 0.1, &plane, &across_m));
+  EXPECT_LT(across_m, 0.02);
+}
+
+TEST(PlaneMatcher, ReachesAcrossALineOfNeighboursToTheGroundPlane) {
+  const BruteForceSearch map(TwoRingsOnTheGround());
+  const Eigen::Vector3d above_ring_a(0.1, 0.0, 0.05);
+  Plane plane;
+  // Five neighbours on ring A alone: the plane that fits them best is the vertical one
+  // through the ring, and a scan matched to it is held sideways where ring A lay.
+  PlaneMatcherOptions five_only;
+  five_only.line_like_neighbors = 0;
+  ASSERT_TRUE(PlaneMatcher(map, five_only).Match(above_ring_a, &plane));
+  EXPECT_GT(std::abs(plane.normal.y()), 0.99);
+  // By default the line-like set is widened to twelve, which reach ring B: the ground.
+  ASSERT_TRUE(PlaneMatcher(map, PlaneMatcherOptions{}).Match(above_ring_a, &plane));
+  EXPECT_GT(std::abs(plane.normal.z()), 0.999);
+  EXPECT_NEAR(std::abs(plane.Distance(above_ring_a)), 0.05, 0.01);
+}
+
 TEST(PlaneMatcherOptions, NamesTheBrokenField) {
   PlaneMatcherOptions o;
   o.num_neighbors = 2;
   std::string why;
   EXPECT_FALSE(o.IsValid(&why));
   EXPECT_NE(why.find("num_neighbors"), std::string::npos);
+  PlaneMatcherOptions negative;
+  negative.line_like_neighbors = -1;
+  EXPECT_FALSE(negative.IsValid(&why));
+  EXPECT_NE(why.find("line_like_neighbors"), std::string::npos);
 }
 
 }  // namespace

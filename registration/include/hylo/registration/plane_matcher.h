@@ -3,6 +3,8 @@
 // a scan point placed in the map with the current estimate gets its k nearest map points, a
 // least-squares plane is fitted to them, and the plane is kept only if every neighbour lies
 // within a threshold of it. The residual is the signed distance of the point to that plane.
+// Neighbours that lie along a line fit every plane through it (see line_like_neighbors): the
+// neighbourhood is then widened once before the plane is fitted.
 
 #include <Eigen/Core>
 #include <string>
@@ -14,6 +16,15 @@ namespace hylo::registration {
 
 struct PlaneMatcherOptions {
   int num_neighbors = 5;                 ///< k nearest map points per plane, >= 3
+  /// When the k neighbours spread across their main direction by less than
+  /// planarity_threshold_m, every plane through that line passes the planarity test and the
+  /// normal is noise; matched against it, a scan is held where earlier scans lay (a spinning
+  /// head's rings on the ground: points 0.5 m apart along a ring, metres between rings; a
+  /// 16-beam head starting on a slope kept only 45 % of its true roll change in the first 2 s
+  /// of motion). Such a point is matched again with this many neighbours, which reach across
+  /// the line (or are fewer within max_neighbor_distance_m: no plane). <= num_neighbors: no
+  /// second search. Chosen by halves of the scenario matrix (README).
+  int line_like_neighbors = 12;
   double max_neighbor_distance_m = 2.0;  ///< farther map points are not neighbours, m (> 0)
   double planarity_threshold_m = 0.1;    ///< every neighbour within this of the plane, m (> 0)
   /// Outlier gate on the residual, scaled by range as in FAST-LIO2: a match is kept when
@@ -34,7 +45,10 @@ struct Plane {
 
 /// Least-squares plane through `points` (smallest eigenvector of their covariance). False when
 /// fewer than 3 points or when a point lies farther than `planarity_threshold_m` from it.
-bool FitPlane(const std::vector<Neighbor>& points, double planarity_threshold_m, Plane* plane);
+/// `across_m` (optional): the points' RMS spread across their main direction within the
+/// plane (square root of the middle eigenvalue), m; 0 for fewer than 3 points.
+bool FitPlane(const std::vector<Neighbor>& points, double planarity_threshold_m, Plane* plane,
+              double* across_m = nullptr);
 
 class PlaneMatcher {
  public:
