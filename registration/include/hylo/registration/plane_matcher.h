@@ -20,7 +20,7 @@ struct PlaneMatcherOptions {
   /// planarity_threshold_m, every plane through that line passes the planarity test and the
   /// normal is noise; matched against it, a scan is held where earlier scans lay (a spinning
   /// head's rings on the ground: points 0.5 m apart along a ring, metres between rings; a
-  /// 16-beam head starting on a slope kept only 45 % of its true roll change in the first 2 s
+  /// 16-beam head starting on a slope kept only 44 % of its true roll change in the first 2 s
   /// of motion). Such a point is matched again with this many neighbours, which reach across
   /// the line (or are fewer within max_neighbor_distance_m: no plane). <= num_neighbors: no
   /// second search. Chosen by halves of the scenario matrix (README).
