@@ -15,6 +15,8 @@ bool PlaneMatcherOptions::IsValid(std::string* why) const {
     os << "num_neighbors = " << num_neighbors << ": must be >= 3 (a plane needs 3 points)";
   } else if (line_like_neighbors < 0) {
     os << "line_like_neighbors = " << line_like_neighbors << ": must be >= 0";
+  } else if (!(line_like_ratio > 0.0 && line_like_ratio <= 1.0)) {
+    os << "line_like_ratio = " << line_like_ratio << ": must be in (0, 1]";
   } else if (!(max_neighbor_distance_m > 0.0) || !std::isfinite(max_neighbor_distance_m)) {
     os << "max_neighbor_distance_m = " << max_neighbor_distance_m << ": must be finite and > 0";
   } else if (!(planarity_threshold_m > 0.0) || !std::isfinite(planarity_threshold_m)) {
@@ -29,8 +31,8 @@ bool PlaneMatcherOptions::IsValid(std::string* why) const {
 }
 
 bool FitPlane(const std::vector<Neighbor>& points, double planarity_threshold_m, Plane* plane,
-              double* across_m) {
-  if (across_m != nullptr) *across_m = 0.0;
+              NeighborSpread* spread) {
+  if (spread != nullptr) *spread = NeighborSpread{};
   if (points.size() < 3) return false;
   // Centre on the first point before accumulating so that large map coordinates do not
   // cancel in the covariance.
@@ -47,7 +49,10 @@ bool FitPlane(const std::vector<Neighbor>& points, double planarity_threshold_m,
   const Eigen::Matrix3d cov = outer / count - mean * mean.transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
   eig.computeDirect(cov);
-  if (across_m != nullptr) *across_m = std::sqrt(std::max(eig.eigenvalues()(1), 0.0));
+  if (spread != nullptr) {
+    spread->across_m = std::sqrt(std::max(eig.eigenvalues()(1), 0.0));
+    spread->along_m = std::sqrt(std::max(eig.eigenvalues()(2), 0.0));
+  }
   const Eigen::Vector3d normal = eig.eigenvectors().col(0).normalized();
   // A line (two small eigenvalues) has no defined normal.
   if (!(eig.eigenvalues()(1) > 1e-8) || !normal.allFinite()) return false;
@@ -75,12 +80,14 @@ bool PlaneMatcher::Match(const Eigen::Vector3d& point_map, Plane* plane) const {
   const auto reach_m = static_cast<float>(options_.max_neighbor_distance_m);
   map_.KNearest(query, options_.num_neighbors, reach_m, &neighbors);
   if (static_cast<int>(neighbors.size()) < options_.num_neighbors) return false;
-  double across_m = 0.0;
-  const bool fitted = FitPlane(neighbors, options_.planarity_threshold_m, plane, &across_m);
-  if (across_m >= options_.planarity_threshold_m ||
-      options_.line_like_neighbors <= options_.num_neighbors) {
-    return fitted;
+  if (options_.line_like_neighbors <= options_.num_neighbors) {
+    return FitPlane(neighbors, options_.planarity_threshold_m, plane);
   }
+  NeighborSpread spread;
+  const bool fitted = FitPlane(neighbors, options_.planarity_threshold_m, plane, &spread);
+  const bool line_like = spread.across_m < options_.planarity_threshold_m &&
+                         spread.across_m < options_.line_like_ratio * spread.along_m;
+  if (!line_like) return fitted;
   // Along a line: reach across it (see PlaneMatcherOptions::line_like_neighbors).
   map_.KNearest(query, options_.line_like_neighbors, reach_m, &neighbors);
   if (static_cast<int>(neighbors.size()) < options_.line_like_neighbors) return false;

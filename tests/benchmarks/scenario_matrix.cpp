@@ -60,6 +60,7 @@ const Setting kSettings[] = {
     {"planarity", [](double v, auto* o) { o->planes.planarity_threshold_m = v; }},
     {"neighbors", [](double v, auto* o) { o->planes.num_neighbors = int(v); }},
     {"line_like_neighbors", [](double v, auto* o) { o->planes.line_like_neighbors = int(v); }},
+    {"line_like_ratio", [](double v, auto* o) { o->planes.line_like_ratio = v; }},
     {"gate", [](double v, auto* o) { o->planes.range_gate_factor = v; }},
     {"imu_noise_scale",
      [](double v, auto* o) {

@@ -18,7 +18,7 @@ namespace {
 // what `hylo map --config config/handheld_noimu.yaml` gives. The target: 2 cm / 0.2 deg RMSE
 // against the first pose. The data README notes the reference poses agree with scan-to-scan
 // ICP within ~1.5 cm / 0.14 deg, so a drifting SLAM run sits near 2 cm by construction;
-// measured 1.82 cm / 0.10 deg with either back-end (the robust registration starts every
+// measured 1.85 cm / 0.10 deg with either back-end (the robust registration starts every
 // update in its basin; handheld_robust_test runs every stretch). Per-scan figures print.
 struct BalmCase {
   Estimator::Backend backend;

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "hylo/registration/brute_force_search.h"
@@ -47,9 +49,16 @@ TEST(FitPlane, RejectsNonPlanarCollinearAndTooFewPoints) {
 TEST(PlaneMatcher, MatchesNoisyPlaneAndAgreesWithBruteForceFit) {
   std::mt19937 rng(11);
   const BruteForceSearch map(NoisyPlane(4000, 0.01, &rng));
-  const PlaneMatcher matcher(map, PlaneMatcherOptions{});
+  // The plain path (no line-like retry) fits exactly the 5 nearest points; the default widens
+  // an elongated set of 5 and finds the surface more closely.
+  PlaneMatcherOptions plain;
+  plain.line_like_neighbors = 0;
+  const PlaneMatcher matcher(map, plain);
+  const PlaneMatcher with_retry(map, PlaneMatcherOptions{});
+  const Eigen::Vector3d truth = Eigen::Vector3d(0.2, -0.1, -1.0).normalized();
   std::uniform_real_distribution<double> u(-8.0, 8.0);
   int matched = 0;
+  double worst_plain = 1.0, worst_widened = 1.0;
   for (int i = 0; i < 200; ++i) {
     const double x = u(rng), y = u(rng);
     const Eigen::Vector3d q(x, y, 0.2 * x - 0.1 * y + 3.0 + 0.3);  // 0.3 m above the surface
@@ -63,8 +72,16 @@ TEST(PlaneMatcher, MatchesNoisyPlaneAndAgreesWithBruteForceFit) {
     EXPECT_NEAR(std::abs(plane.normal.dot(reference.normal)), 1.0, 1e-9);
     // The signed distance is the offset along the normal: |r| ≈ 0.3 cos(tilt).
     EXPECT_NEAR(std::abs(plane.Distance(q)), 0.3 / std::sqrt(1.0 + 0.04 + 0.01), 0.03);
+    Plane widened;
+    ASSERT_TRUE(with_retry.Match(q, &widened));
+    worst_plain = std::min(worst_plain, std::abs(plane.normal.dot(truth)));
+    worst_widened = std::min(worst_widened, std::abs(widened.normal.dot(truth)));
   }
   EXPECT_GT(matched, 190);
+  // Random points ~0.3 m apart with 1 cm noise: the worst of the plain 5-point planes was 39
+  // degrees off (a thin sliver of 5), the worst widened one 10 degrees.
+  EXPECT_GT(worst_widened, 0.98);
+  EXPECT_LT(worst_plain, worst_widened);
 }
 
 TEST(PlaneMatcher, RejectsFarAndNonPlanarNeighbourhoods) {
@@ -103,29 +120,63 @@ TEST(FitPlane, ReportsTheSpreadAcrossTheMainDirection) {
   std::vector<Neighbor> plane_points;
   for (const auto& p : NoisyPlane(50, 0.0, &rng)) plane_points.push_back({p, 0.f});
   Plane plane;
-  double across_m = 0.0;
-  ASSERT_TRUE(FitPlane(plane_points, 0.01, &plane, &across_m));
-  EXPECT_GT(across_m, 3.0);  // uniform over 20 m x 20 m: ~5.8 m
+  NeighborSpread spread;
+  ASSERT_TRUE(FitPlane(plane_points, 0.01, &plane, &spread));
+  EXPECT_GT(spread.across_m, 3.0);  // uniform over 20 m x 20 m: ~5.8 m in either direction
+  EXPECT_GE(spread.along_m, spread.across_m);
   std::vector<Neighbor> ring;
   for (int i = 0; i < 5; ++i) ring.push_back({{0.5f * i, 0.f, (i % 2 == 0) ? 0.01f : -0.01f}, 0.f});
-  ASSERT_TRUE(FitPlane(ring, 0.1, &plane, &across_m));
-  EXPECT_LT(across_m, 0.02);
+  ASSERT_TRUE(FitPlane(ring, 0.1, &plane, &spread));
+  EXPECT_LT(spread.across_m, 0.02);
+  EXPECT_NEAR(spread.along_m, std::sqrt(0.5), 1e-3);  // 0, 0.5, ..., 2 m: variance 0.5 m^2
 }
 
 TEST(PlaneMatcher, ReachesAcrossALineOfNeighboursToTheGroundPlane) {
   const BruteForceSearch map(TwoRingsOnTheGround());
   const Eigen::Vector3d above_ring_a(0.1, 0.0, 0.05);
   Plane plane;
-  // Five neighbours on ring A alone (the default): the plane that fits them best is the
-  // vertical one through the ring, and a scan matched to it is held sideways where ring A lay.
-  ASSERT_TRUE(PlaneMatcher(map, PlaneMatcherOptions{}).Match(above_ring_a, &plane));
+  // Five neighbours on ring A alone (no retry): the plane that fits them best is the vertical
+  // one through the ring, and a scan matched to it is held sideways where ring A lay.
+  PlaneMatcherOptions no_retry;
+  no_retry.line_like_neighbors = 0;
+  ASSERT_TRUE(PlaneMatcher(map, no_retry).Match(above_ring_a, &plane));
   EXPECT_GT(std::abs(plane.normal.y()), 0.99);
-  // With the retry the line-like set is widened to twelve, which reach ring B: the ground.
-  PlaneMatcherOptions retry;
-  retry.line_like_neighbors = 12;
-  ASSERT_TRUE(PlaneMatcher(map, retry).Match(above_ring_a, &plane));
+  // With the retry (the default) the line-like set is widened to twelve, which reach ring B:
+  // the ground.
+  ASSERT_TRUE(PlaneMatcher(map, PlaneMatcherOptions{}).Match(above_ring_a, &plane));
   EXPECT_GT(std::abs(plane.normal.z()), 0.999);
   EXPECT_NEAR(std::abs(plane.Distance(above_ring_a)), 0.05, 0.01);
+}
+
+// A dense patch of floor (0.1 m grid, 3 x 2 points) and, 0.3 m beyond it, a step 8 cm up.
+// The five neighbours of a point on the patch spread 3.7 cm across and 6.1 cm along their main
+// direction: under the planarity threshold in both, but a patch, not a line.
+PointCloud DensePatchBesideAStep() {
+  PointCloud points;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      points.emplace_back(0.1f * i, 0.1f * j, 0.f);         // the patch
+      points.emplace_back(0.5f + 0.1f * i, 0.1f * j, 0.08f);  // the step
+    }
+  }
+  return points;
+}
+
+TEST(PlaneMatcher, ADensePatchIsNotLineLikeHoweverSmallItIs) {
+  const BruteForceSearch map(DensePatchBesideAStep());
+  const Eigen::Vector3d on_patch(0.09, 0.04, 0.02);
+  Plane plane;
+  // Judged by the planarity threshold alone (ratio 1), the patch is widened to the step and
+  // the plane through both tilts by ~9 degrees.
+  PlaneMatcherOptions absolute_only;
+  absolute_only.line_like_ratio = 1.0;
+  ASSERT_TRUE(PlaneMatcher(map, absolute_only).Match(on_patch, &plane));
+  EXPECT_LT(std::abs(plane.normal.z()), 0.995);
+  // Judged against its spread along (the default ratio), the patch keeps its own plane: the
+  // floor.
+  ASSERT_TRUE(PlaneMatcher(map, PlaneMatcherOptions{}).Match(on_patch, &plane));
+  EXPECT_GT(std::abs(plane.normal.z()), 0.9999);
+  EXPECT_NEAR(std::abs(plane.Distance(on_patch)), 0.02, 1e-6);
 }
 
 TEST(PlaneMatcherOptions, NamesTheBrokenField) {
@@ -138,6 +189,12 @@ TEST(PlaneMatcherOptions, NamesTheBrokenField) {
   negative.line_like_neighbors = -1;
   EXPECT_FALSE(negative.IsValid(&why));
   EXPECT_NE(why.find("line_like_neighbors"), std::string::npos);
+  for (double ratio : {0.0, -0.1, 1.5, std::nan("")}) {
+    PlaneMatcherOptions bad_ratio;
+    bad_ratio.line_like_ratio = ratio;
+    EXPECT_FALSE(bad_ratio.IsValid(&why)) << ratio;
+    EXPECT_NE(why.find("line_like_ratio"), std::string::npos);
+  }
 }
 
 }  // namespace

@@ -158,6 +158,7 @@ template <class V>
 void VisitFields(V& v, registration::PlaneMatcherOptions& o) {
   v("num_neighbors", o.num_neighbors);
   v("line_like_neighbors", o.line_like_neighbors);
+  v("line_like_ratio", o.line_like_ratio);
   v("max_neighbor_distance_m", o.max_neighbor_distance_m);
   v("planarity_threshold_m", o.planarity_threshold_m);
   v("range_gate_factor", o.range_gate_factor);
