@@ -149,7 +149,7 @@ TEST(PlaneMatcher, ReachesAcrossALineOfNeighboursToTheGroundPlane) {
 }
 
 // A dense patch of floor (0.1 m grid, 3 x 2 points) and, 0.3 m beyond it, a step 8 cm up.
-// The five neighbours of a point on the patch spread 3.7 cm across and 6.1 cm along their main
+// The five neighbours of a point on the patch spread 4.5 cm across and 7.7 cm along their main
 // direction: under the planarity threshold in both, but a patch, not a line.
 PointCloud DensePatchBesideAStep() {
   PointCloud points;
@@ -166,6 +166,13 @@ TEST(PlaneMatcher, ADensePatchIsNotLineLikeHoweverSmallItIs) {
   const BruteForceSearch map(DensePatchBesideAStep());
   const Eigen::Vector3d on_patch(0.09, 0.04, 0.02);
   Plane plane;
+  std::vector<Neighbor> five;
+  map.KNearest(on_patch.cast<float>(), 5, 2.f, &five);
+  NeighborSpread spread;
+  ASSERT_TRUE(FitPlane(five, 0.1, &plane, &spread));
+  // What the two cases below rely on: under the planarity threshold, but not elongated.
+  EXPECT_LT(spread.across_m, 0.1);
+  EXPECT_GT(spread.across_m, 0.5 * spread.along_m);
   // Judged by the planarity threshold alone (ratio 1), the patch is widened to the step and
   // the plane through both tilts by ~9 degrees.
   PlaneMatcherOptions absolute_only;
