@@ -43,6 +43,12 @@ void BackendBase::LearnFromUpdate(const NavState& predicted, const NavState& upd
   if (robust_.enabled()) robust_.Observe(predicted.T_map_lidar(), updated.T_map_lidar());
 }
 
+StandstillTest BackendBase::TestStandstillBetween(int64_t t0_ns, int64_t t1_ns,
+                                                  const Eigen::Vector3d& v_map) const {
+  return TestStandstill(imu_.samples(), t0_ns, t1_ns, v_map.norm(), imu_options_,
+                        options_.standstill);
+}
+
 NavState BackendBase::PredictAt(int64_t t_ns) const {
   const ImuGapModel gap = imu_.GapModel();
   return PredictNominal(state_, imu_.samples(), imu_options_.enabled,

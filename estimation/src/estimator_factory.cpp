@@ -19,6 +19,7 @@ const std::pair<Estimator::Backend, const char*> kBackendNames[] = {
 bool EstimatorOptions::IsValid(std::string* why) const {
   return CheckSection(lidar_update, "lidar_update", why) && CheckSection(no_imu, "no_imu", why) &&
          CheckSection(robust_registration, "robust_registration", why) &&
+         CheckSection(standstill, "standstill", why) &&
          CheckSection(ieskf, "ieskf", why) && CheckSection(sliding_window, "sliding_window", why);
 }
 

@@ -196,6 +196,7 @@ TEST(RunConfig, OdometrySectionsParseValidateAndRoundTrip) {
       "planes: {planarity_threshold_m: 0.05}\n"
       "map: {voxel_size_m: 0.3, window_size_m: 0}\n"
       "init: {duration_s: 2.0}\n"
+      "standstill: {enabled: false, max_spread_ratio: 4}\n"
       "T_imu_lidar: {translation_m: [0, 0, 0.2], rotation_rpy_deg: [0, 0, 180]}\n",
       "test.yaml");
   const estimation::OdometryPipelineOptions& p = config.pipeline;
@@ -208,6 +209,8 @@ TEST(RunConfig, OdometrySectionsParseValidateAndRoundTrip) {
   EXPECT_DOUBLE_EQ(back.pipeline.map.voxel_size_m, 0.3);
   EXPECT_DOUBLE_EQ(back.pipeline.map.window_size_m, 0.0);
   EXPECT_DOUBLE_EQ(back.pipeline.init.duration_s, 2.0);
+  EXPECT_FALSE(back.pipeline.estimator.standstill.enabled);
+  EXPECT_DOUBLE_EQ(back.pipeline.estimator.standstill.max_spread_ratio, 4.0);
   const estimation::OdometryPipelineOptions pipeline = back.PipelineOptions();
   std::string why;
   EXPECT_TRUE(pipeline.IsValid(&why)) << why;
@@ -223,6 +226,7 @@ TEST(RunConfig, OdometrySectionsRejectUnknownKeysAndBadValues) {
   ExpectConfigError("planes: {num_neighbors: 2}\n", {"planes.num_neighbors"});
   ExpectConfigError("map: {voxel_size_m: -1}\n", {"map.voxel_size_m"});
   ExpectConfigError("preprocess: {point_stride: 0}\n", {"preprocess.point_stride", ">= 1"});
+  ExpectConfigError("standstill: {max_speed_mps: 0}\n", {"standstill.max_speed_mps", "> 0"});
 }
 
 // The ground section: the robot-map preset by default, the method and each back-end's

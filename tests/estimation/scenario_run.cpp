@@ -187,7 +187,7 @@ void WriteTrace(const std::string& path, const PipelineRun& run,
 
 // Each scan's lidar update, one per line: time since the first scan (s), matches of points
 // offered, applied, degenerate, the translation (0..1) and rotation (m²) information per match,
-// RMS residual (m), iterations, map points.
+// RMS residual (m), iterations, map points, a zero-velocity update (standstill.h).
 void WriteUpdates(const std::string& path, const PipelineRun& run) {
   std::ofstream out(path);
   if (run.results.empty()) return;
@@ -197,7 +197,7 @@ void WriteUpdates(const std::string& path, const PipelineRun& run) {
     out << 1e-9 * double(r.t_ns - t0_ns) << ' ' << u.num_matches << ' ' << u.num_points << ' '
         << u.applied << ' ' << u.degenerate << ' ' << u.min_translation_information << ' '
         << u.min_rotation_information << ' ' << u.rms_residual_m << ' ' << u.iterations << ' '
-        << r.map_points << '\n';
+        << r.map_points << ' ' << u.standstill << '\n';
   }
 }
 

@@ -133,6 +133,16 @@ TEST(SlidingWindowFactors, ConstantVelocityFactorJacobians) {
                          {qa.data(), pa.data(), qb.data(), pb.data(), qc.data(), pc.data()}, 1e-7);
 }
 
+TEST(SlidingWindowFactors, ZeroVelocityFactorWhitensTheVelocityOnly) {
+  const ZeroVelocityFactor factor(0.02);
+  double speed_bias[9] = {0.1, -0.2, 0.05, 1e-3, 2e-3, 3e-3, 0.1, 0.2, 0.3};
+  const double* parameters[1] = {speed_bias};
+  Eigen::Vector3d r;
+  ASSERT_TRUE(factor.Evaluate(parameters, r.data(), nullptr));
+  EXPECT_TRUE(r.isApprox(Eigen::Vector3d(5.0, -10.0, 2.5))) << r.transpose();
+  ExpectJacobiansCorrect(factor, {nullptr}, {speed_bias}, 1e-7);
+}
+
 TEST(Marginalization, SchurComplementIsTheMarginalOfAGaussian) {
   // Two "states" (rotation + position each) with a random joint information H: marginalising
   // the first must leave exactly the information of the second's marginal, ((H⁻¹)_kk)⁻¹, and

@@ -134,6 +134,15 @@ void VisitFields(V& v, estimation::RobustRegistrationOptions& o) {
 }
 
 template <class V>
+void VisitFields(V& v, estimation::StandstillOptions& o) {
+  v("enabled", o.enabled);
+  v("max_spread_ratio", o.max_spread_ratio);
+  v("max_speed_mps", o.max_speed_mps);
+  v("velocity_noise_mps", o.velocity_noise_mps);
+  v("min_samples", o.min_samples);
+}
+
+template <class V>
 void VisitFields(V& v, estimation::IeskfOptions& o) {
   v("max_iterations", o.max_iterations);
   v("convergence_rotation_rad", o.convergence_rotation_rad);
@@ -323,6 +332,7 @@ void VisitFields(V& v, RunConfig& run) {
   v.Section("lidar_update", p.estimator.lidar_update);
   v.Section("no_imu", p.estimator.no_imu);
   v.Section("robust_registration", p.estimator.robust_registration);
+  v.Section("standstill", p.estimator.standstill);
   v.Section("ieskf", p.estimator.ieskf);
   v.Section("sliding_window", p.estimator.sliding_window);
   v.Section("planes", p.planes);

@@ -113,6 +113,8 @@ UpdateSummary Ieskf::Update(const DeskewedScan& scan, const registration::PlaneM
     return summary;
   }
   const NavState before = state_;
+  // Tested before propagation drops the interval's samples; the speed is the last update's.
+  summary.standstill = TestStandstillBetween(state_.t_ns, scan.t_ns, state_.v_map_imu).at_rest;
   Propagate(scan.t_ns);
   if (planes.map().Size() == 0) {
     summary.message = "map is empty: prediction only";
@@ -132,6 +134,8 @@ void Ieskf::Correct(const DeskewedScan& scan, const registration::PlaneMatcher& 
   const Eigen::MatrixXd P_prior_inv = P_prior.ldlt().solve(Eigen::MatrixXd::Identity(dim, dim));
   const LidarUpdateOptions& lidar = options_.lidar_update;
   const double weight = 1.0 / (lidar.lidar_noise_m * lidar.lidar_noise_m);
+  const double sigma_v = options_.standstill.velocity_noise_mps;
+  const double zero_velocity_weight = 1.0 / (sigma_v * sigma_v);
   NavState x = UpdateStart(prior, scan, planes,
                            [&](const NavState& candidate) {
                              Associate(candidate, scan, planes);
@@ -154,6 +158,11 @@ void Ieskf::Correct(const DeskewedScan& scan, const registration::PlaneMatcher& 
     A = J.transpose() * P_prior_inv * J;
     Eigen::VectorXd b = J.transpose() * (P_prior_inv * dx.head(dim));
     AddLidarSystem(system.HtH, system.Htr, weight, dim, &A, &b);
+    if (summary->standstill) {
+      // v_map = 0 measured with noise σ: residual v, Jacobian I on the velocity block.
+      A.block<3, 3>(kVelocity, kVelocity).diagonal().array() += zero_velocity_weight;
+      b.segment<3>(kVelocity) += zero_velocity_weight * x.v_map_imu;
+    }
     const Eigen::VectorXd step = -A.ldlt().solve(b);
     StateVector delta = StateVector::Zero();
     delta.head(dim) = step;

@@ -81,6 +81,7 @@ void SlidingWindow::AppendState(const DeskewedScan& scan) {
     predicted = next->imu->Predict(last, last.gravity_map);
   }
   next->blocks.FromNavState(predicted);
+  next->at_rest = TestStandstillBetween(last.t_ns, scan.t_ns, last.v_map_imu).at_rest;
   window_.push_back(std::move(next));
   SetNewestScan(scan);
   imu_.DropBefore(scan.t_ns);
@@ -162,6 +163,7 @@ UpdateSummary SlidingWindow::Update(const DeskewedScan& scan,
     AppendState(scan);
   }
   WindowState& newest = *window_.back();
+  summary.standstill = newest.at_rest;
   if (planes.map().Size() == 0) {
     summary.message = "map is empty: prediction only";
   } else {

@@ -132,6 +132,17 @@ bool ScanPlaneFactor::Evaluate(double const* const* parameters, double* residual
   return true;
 }
 
+bool ZeroVelocityFactor::Evaluate(double const* const* parameters, double* residuals,
+                                  double** jacobians) const {
+  for (int i = 0; i < 3; ++i) residuals[i] = sqrt_information_ * parameters[0][i];
+  if (jacobians != nullptr && jacobians[0] != nullptr) {
+    Eigen::Map<Eigen::Matrix<double, 3, 9, Eigen::RowMajor>> J(jacobians[0]);
+    J.setZero();
+    J.leftCols<3>().diagonal().setConstant(sqrt_information_);
+  }
+  return true;
+}
+
 ceres::CostFunction* MakeConstantVelocityFactor(double dt_ab_s, double dt_bc_s,
                                                 double translation_noise, double rotation_noise) {
   const double dt_mid = 0.5 * (dt_ab_s + dt_bc_s);

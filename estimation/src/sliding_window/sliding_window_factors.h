@@ -66,6 +66,19 @@ class ScanPlaneFactor final : public ceres::CostFunction {
   const std::vector<PlaneMatch>& matches_;
 };
 
+/// Zero velocity at rest (standstill.h): r = v_map / σ. Block: speed_bias (its first three
+/// entries are the velocity).
+class ZeroVelocityFactor final : public ceres::SizedCostFunction<3, 9> {
+ public:
+  explicit ZeroVelocityFactor(double velocity_noise_mps)
+      : sqrt_information_(1.0 / velocity_noise_mps) {}
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override;
+
+ private:
+  double sqrt_information_;  // 1/σ, s/m
+};
+
 /// No-IMU mode: constant velocity over three consecutive poses a, b, c. The change of the
 /// mean linear velocity (map) and of the mean body rate between [a, b] and [b, c], whitened
 /// by random walks of the given densities over the mean of the two intervals.

@@ -64,6 +64,9 @@ FactorSet BuildFactors(const Window& window, const MarginalPrior* prior, double*
     if (!window[k]->matches.empty()) {
       add(new ScanPlaneFactor(window[k]->matches), {x.rotation, x.position});
     }
+    if (use_imu && window[k]->at_rest) {
+      add(new ZeroVelocityFactor(options.standstill.velocity_noise_mps), {x.speed_bias});
+    }
     if (k == 0) continue;
     StateBlocks& w = window[k - 1]->blocks;
     if (use_imu && window[k]->imu != nullptr) {

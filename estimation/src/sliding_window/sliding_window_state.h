@@ -18,6 +18,8 @@ struct WindowState {
   /// none: it is not a scan's pose).
   bool holds_scan = false;
   StateBlocks blocks;
+  /// The IMU showed rest since the previous state: a zero-velocity factor holds it.
+  bool at_rest = false;
   /// Preintegrated IMU from the previous window state to this one (null for the first state
   /// of a window, and without IMU data).
   std::unique_ptr<ImuPreintegration> imu;
@@ -38,8 +40,8 @@ struct FactorSet {
 std::vector<BlockRef> StateBlockRefs(WindowState* state, bool use_imu);
 
 /// Every factor of the window: the prior (if any), IMU factors (using the shared gravity block
-/// `gravity_map`) or constant-velocity factors, and the
-/// point-to-plane factors of scans with matches.
+/// `gravity_map`) or constant-velocity factors, zero-velocity factors of states at rest, and
+/// the point-to-plane factors of scans with matches.
 FactorSet BuildFactors(const Window& window, const MarginalPrior* prior, double* gravity_map,
                        const EstimatorOptions& options, bool use_imu);
 

@@ -15,6 +15,7 @@
 #include "hylo/estimation/imu_options.h"
 #include "hylo/estimation/no_imu_motion.h"
 #include "hylo/estimation/robust_registration.h"
+#include "hylo/estimation/standstill.h"
 
 namespace hylo::estimation {
 
@@ -42,6 +43,10 @@ class BackendBase : public Estimator {
   /// After an applied update that went from `predicted` to `updated`: how far the motion
   /// model was off, for the robust registration's adaptive threshold.
   void LearnFromUpdate(const NavState& predicted, const NavState& updated);
+  /// The standstill test over the buffered IMU samples in [t0_ns, t1_ns], for an estimate
+  /// moving at `v_map` (standstill.h); call it before the samples are dropped.
+  StandstillTest TestStandstillBetween(int64_t t0_ns, int64_t t1_ns,
+                                       const Eigen::Vector3d& v_map) const;
 
   const EstimatorOptions options_;
   const ImuOptions imu_options_;

@@ -50,6 +50,9 @@ struct UpdateSummary {
   double min_translation_information = 0.0;  ///< see LidarUpdateOptions, 0..1
   double min_rotation_information = 0.0;     ///< see LidarUpdateOptions, m²
   double rms_residual_m = 0.0;   ///< RMS point-to-plane residual of the matches, m
+  /// The IMU showed the vehicle at rest over the interval: the back-end holds v = 0 beside the
+  /// scan wherever its update runs (standstill.h).
+  bool standstill = false;
   /// Per offered point, its point-to-plane residual at the final state (m), NaN where the
   /// point had no plane. How well the scan fits the map, without a second search of it.
   std::vector<float> point_residuals_m;
