@@ -7,8 +7,11 @@ cd "$(dirname "$0")/.."
 build_dir="${HYLO_BUILD_DIR:-build}"
 generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
+# ccache, when the machine has it, makes rebuilds in another checkout cheap; CI has none.
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 if [ ! -f "$build_dir/CMakeCache.txt" ]; then
-  cmake -S . -B "$build_dir" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release
+  cmake -S . -B "$build_dir" "${generator[@]}" "${launcher[@]}" -DCMAKE_BUILD_TYPE=Release
 fi
 targets=()
 [ "$#" -gt 0 ] && targets=(--target "$@")
