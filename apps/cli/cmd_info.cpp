@@ -8,25 +8,25 @@
 
 #include "commands.h"
 #include "hylo/common/time.h"
-#include "hylo/io/bag_reader.h"
-#include "hylo/io/log_reader.h"
-#include "hylo/io/scan_folder.h"
+#include "hylo/logs/bag_reader.h"
+#include "hylo/logs/log_reader.h"
+#include "hylo/logs/scan_folder.h"
 #include "hylo/run/run_log.h"
 
 namespace hylo::cli {
 namespace {
 
-std::string FieldList(const std::vector<io::PointFieldInfo>& fields) {
+std::string FieldList(const std::vector<logs::PointFieldInfo>& fields) {
   std::ostringstream os;
   for (const auto& f : fields) {
-    os << (os.tellp() > 0 ? " " : "") << f.name << ":" << io::PointFieldDatatypeName(f.datatype);
+    os << (os.tellp() > 0 ? " " : "") << f.name << ":" << logs::PointFieldDatatypeName(f.datatype);
     if (f.count != 1) os << "[" << f.count << "]";
   }
   return os.str();
 }
 
 io::Json DescribeBagToTerminal(const std::string& path) {
-  const io::BagDescription bag = io::DescribeBag(path);
+  const logs::BagDescription bag = logs::DescribeBag(path);
   std::printf("ROS1 bag %s\n  size %.1f MB, %zu messages, %.3f s (receive time %.3f .. %.3f)\n",
               path.c_str(), bag.file_size_bytes / 1e6, bag.message_count, bag.duration_s,
               NanosToSeconds(bag.start_ns), NanosToSeconds(bag.end_ns));
@@ -55,9 +55,9 @@ io::Json DescribeBagToTerminal(const std::string& path) {
     if (!t.point_fields.empty()) {
       const std::string fields = FieldList(t.point_fields);
       std::printf("      point fields: %s\n      per-point time: %s\n", fields.c_str(),
-                  io::ToString(t.detected_convention).c_str());
+                  logs::ToString(t.detected_convention).c_str());
       topic["point_fields"] = fields;
-      topic["time_convention"] = io::ToString(t.detected_convention);
+      topic["time_convention"] = logs::ToString(t.detected_convention);
     }
     topics.push_back(std::move(topic));
   }
@@ -66,7 +66,7 @@ io::Json DescribeBagToTerminal(const std::string& path) {
 }
 
 io::Json DescribeFolderToTerminal(const std::string& path) {
-  const io::ScanFolderDescription folder = io::DescribeScanFolder(path);
+  const logs::ScanFolderDescription folder = logs::DescribeScanFolder(path);
   std::ostringstream fields;
   for (const auto& f : folder.point_fields) fields << (fields.tellp() > 0 ? " " : "") << f;
   std::printf("scan folder %s\n  %zu scans (%s, %s), first scan %zu points, fields: %s\n",

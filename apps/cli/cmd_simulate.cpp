@@ -50,7 +50,7 @@ io::Json SessionJson(const sim::SessionSummary& s) {
 // Where config/<preset>.yaml is: --config-dir, else ./config, else the source tree's.
 std::string PresetDir(const std::string& given) {
   if (!given.empty()) return given;
-  if (std::filesystem::exists("config/vlp16.yaml")) return "config";
+  if (std::filesystem::exists("config/presets/vlp16.yaml")) return "config/presets";
   return HYLO_PRESET_DIR;
 }
 

@@ -13,7 +13,7 @@ config::RunConfig ConfigForSimulation(const sim::SimulationOptions& sim) {
   estimation::OdometryPipelineOptions& p = c.pipeline;
   p.estimator.backend = estimation::Estimator::Backend::kIeskf;
   c.lidar.topic = "/points";
-  c.lidar.time_convention = io::PointTimeConvention::kVelodyne;
+  c.lidar.time_convention = logs::PointTimeConvention::kVelodyne;
   p.preprocess.min_range_m = sim.lidar.min_range_m;
   p.preprocess.max_range_m = sim.lidar.max_range_m;
   c.imu.topic = "/imu";

@@ -13,7 +13,7 @@
 
 namespace hylo::cli {
 
-/// The configuration of config/sim_vlp16.yaml, taken from `sim` itself: topics, Velodyne
+/// The configuration of config/presets/sim_vlp16.yaml, taken from `sim` itself: topics, Velodyne
 /// point times, range limits, IMU rate and noise, and the simulator's lidar mounting.
 config::RunConfig ConfigForSimulation(const sim::SimulationOptions& sim);
 

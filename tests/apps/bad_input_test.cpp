@@ -19,11 +19,11 @@
 #include <vector>
 
 #include "apps/cli_test_util.h"
-#include "hylo/io/bag_reader.h"
-#include "hylo/io/bag_writer.h"
+#include "hylo/logs/bag_reader.h"
+#include "hylo/logs/bag_writer.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/json.h"
-#include "hylo/io/log_reader.h"
+#include "hylo/logs/log_reader.h"
 #include "test_data.h"
 
 namespace hylo {
@@ -32,7 +32,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::ReadText;
 
-const std::string kConfig = std::string(HYLO_SOURCE_DIR) + "/config/sim_vlp16.yaml";
+const std::string kConfig = std::string(HYLO_SOURCE_DIR) + "/config/presets/sim_vlp16.yaml";
 
 std::string Dir() {
   static const std::string dir = testing::ScratchDir("bad_input");
@@ -75,11 +75,11 @@ const std::string& GoodBag() {
 }
 
 /// The session's messages in receive order.
-std::vector<io::LogMessage> GoodMessages() {
-  io::LogReadOptions options;
-  auto reader = io::OpenLog(GoodBag(), options);
-  std::vector<io::LogMessage> messages;
-  io::LogMessage m;
+std::vector<logs::LogMessage> GoodMessages() {
+  logs::LogReadOptions options;
+  auto reader = logs::OpenLog(GoodBag(), options);
+  std::vector<logs::LogMessage> messages;
+  logs::LogMessage m;
   while (reader->Next(&m)) messages.push_back(m);
   return messages;
 }
@@ -134,14 +134,14 @@ struct Faults {
 /// The session rewritten with faults in both streams after the IMU start (t > 5 s).
 std::string FaultyBag(Faults* faults) {
   const std::string path = Path("faulty.bag");
-  const std::vector<io::LogMessage> messages = GoodMessages();
-  const int64_t t0 = messages.front().kind == io::LogMessage::Kind::kImu
+  const std::vector<logs::LogMessage> messages = GoodMessages();
+  const int64_t t0 = messages.front().kind == logs::LogMessage::Kind::kImu
                          ? messages.front().imu.t_ns
                          : messages.front().scan.t_ns;
-  io::BagWriter writer(path);
+  logs::BagWriter writer(path);
   std::size_t imu_index = 0, scan_index = 0;
-  for (const io::LogMessage& m : messages) {
-    if (m.kind == io::LogMessage::Kind::kScan) {
+  for (const logs::LogMessage& m : messages) {
+    if (m.kind == logs::LogMessage::Kind::kScan) {
       LidarScan scan = m.scan;
       const bool late = scan.t_ns - t0 > 5'000'000'000;
       if (late && scan_index % 10 == 3) {  // an empty scan
@@ -153,12 +153,12 @@ std::string FaultyBag(Faults* faults) {
         }
         faults->nan_points += 3;
       }
-      writer.WriteScan("/points", scan, io::PointTimeConvention::kVelodyne, "lidar");
+      writer.WriteScan("/points", scan, logs::PointTimeConvention::kVelodyne, "lidar");
       if (late && scan_index % 10 == 8) {  // the previous scan again, received now: backwards
         LidarScan old = scan;
         old.t_ns -= 300'000'000;
         old.end_t_ns -= 300'000'000;
-        writer.WriteCloud("/points", io::EncodePointCloud2(old, io::PointTimeConvention::kVelodyne),
+        writer.WriteCloud("/points", logs::EncodePointCloud2(old, logs::PointTimeConvention::kVelodyne),
                           scan.end_t_ns);
         ++faults->stale_scans;
       }

@@ -12,7 +12,7 @@
 namespace hylo {
 namespace {
 
-const std::string kConfig = std::string(HYLO_SOURCE_DIR) + "/config/sim_vlp16.yaml";
+const std::string kConfig = std::string(HYLO_SOURCE_DIR) + "/config/presets/sim_vlp16.yaml";
 
 using testing::ReadText;
 

@@ -18,7 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::ReadText;
 
-const std::string kConfig = std::string(HYLO_SOURCE_DIR) + "/config/sim_vlp16.yaml";
+const std::string kConfig = std::string(HYLO_SOURCE_DIR) + "/config/presets/sim_vlp16.yaml";
 
 class TileCliTest : public ::testing::Test {
  protected:

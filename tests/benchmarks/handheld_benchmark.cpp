@@ -23,7 +23,7 @@
 
 int main(int argc, char** argv) {
   using namespace hylo;  // NOLINT
-  std::string config_path = std::string(HYLO_SOURCE_DIR) + "/config/handheld_noimu.yaml";
+  std::string config_path = std::string(HYLO_SOURCE_DIR) + "/config/presets/handheld_noimu.yaml";
   std::string data_dir = hylo::testing::DataDir(), backend = "both", json_path;
   int stride = 1;
   bool quick = false;

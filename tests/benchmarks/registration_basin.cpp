@@ -21,8 +21,8 @@
 #include "hylo/config/run_config.h"
 #include "hylo/estimation/robust_registration.h"
 #include "hylo/estimation/undistortion.h"
-#include "hylo/io/log_reader.h"
-#include "hylo/io/scan_folder.h"
+#include "hylo/logs/log_reader.h"
+#include "hylo/logs/scan_folder.h"
 #include "hylo/mapping/map_manager.h"
 #include "hylo/registration/voxel_filter.h"
 #include "test_data.h"
@@ -47,18 +47,18 @@ struct Tally {
 void LoadStretch(const std::string& dir, const hylo::estimation::OdometryPipelineOptions& o,
                  std::vector<hylo::PointCloud>* scans, std::vector<SE3d>* truth) {
   using namespace hylo;  // NOLINT
-  io::LogReadOptions read;
+  logs::LogReadOptions read;
   read.imu_topic.clear();
-  auto log = io::OpenLog(dir, read);
-  io::LogMessage message;
+  auto log = logs::OpenLog(dir, read);
+  logs::LogMessage message;
   while (log->Next(&message)) {
-    if (message.kind != io::LogMessage::Kind::kScan) continue;
+    if (message.kind != logs::LogMessage::Kind::kScan) continue;
     estimation::SanitizeScan(&message.scan, static_cast<float>(o.preprocess.min_range_m),
                              static_cast<float>(o.preprocess.max_range_m), 1'000'000'000);
     scans->push_back(registration::UniformSample(estimation::PointsOf(message.scan),
                                                  static_cast<float>(o.preprocess.scan_voxel_m)));
   }
-  for (const io::StampedPose& p : io::ReadScanFolderPoses(dir)) {
+  for (const io::StampedPose& p : logs::ReadScanFolderPoses(dir)) {
     const Eigen::Isometry3d T = p.T_world_body();
     truth->push_back(SE3d(SO3d::FromMatrix(T.linear()), T.translation()));
   }
@@ -68,7 +68,7 @@ void LoadStretch(const std::string& dir, const hylo::estimation::OdometryPipelin
 
 int main(int argc, char** argv) {
   using namespace hylo;  // NOLINT
-  std::string config_path = std::string(HYLO_SOURCE_DIR) + "/config/handheld_noimu.yaml";
+  std::string config_path = std::string(HYLO_SOURCE_DIR) + "/config/presets/handheld_noimu.yaml";
   std::string data_dir = hylo::testing::DataDir(), json_path;
   double deviation_m = 10.0;
   bool no_retry = false, verbose = false;

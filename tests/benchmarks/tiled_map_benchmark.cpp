@@ -113,7 +113,7 @@ Setup Generate(const std::string& work, bool quick, Report* report) {
                 Seconds(t0));
   }
   config::RunConfig config =
-      config::LoadRunConfig(std::string(HYLO_SOURCE_DIR) + "/config/sim_vlp16.yaml");
+      config::LoadRunConfig(std::string(HYLO_SOURCE_DIR) + "/config/presets/sim_vlp16.yaml");
   // A dense map of every registered scan grows with the drive; a memory benchmark leaves it out.
   config.pipeline.output.dense_map_voxel_m = 0.0;
   config::SaveRunConfig(s.config, config);

@@ -9,8 +9,8 @@
 #include <cmath>
 
 #include "hylo/estimation/odometry_pipeline.h"
-#include "hylo/io/log_reader.h"
-#include "hylo/io/scan_folder.h"
+#include "hylo/logs/log_reader.h"
+#include "hylo/logs/scan_folder.h"
 #include "hylo/mapping/prior_map.h"
 #include "test_data.h"
 
@@ -30,16 +30,16 @@ TEST_P(BalmLocalization, OddScansInAMapOfTheEvenScans) {
   HYLO_REQUIRE_DATA("balm_scans/poses.csv");
   const std::string dir = hylo::testing::DataPath("balm_scans");
   const Eigen::Vector3d world_offset = GetParam();
-  std::vector<io::StampedPose> reference = io::ReadScanFolderPoses(dir);
+  std::vector<io::StampedPose> reference = logs::ReadScanFolderPoses(dir);
   for (io::StampedPose& p : reference) p.position += world_offset;
-  io::LogReadOptions read;
+  logs::LogReadOptions read;
   read.imu_topic.clear();
-  auto log = io::OpenLog(dir, read);
+  auto log = logs::OpenLog(dir, read);
   std::vector<LidarScan> odd;
   std::vector<Eigen::Vector3d> map_world;
-  io::LogMessage message;
+  logs::LogMessage message;
   for (std::size_t index = 0; log->Next(&message);) {
-    if (message.kind != io::LogMessage::Kind::kScan) continue;
+    if (message.kind != logs::LogMessage::Kind::kScan) continue;
     if (index++ % 2 == 1) {
       odd.push_back(std::move(message.scan));
       continue;

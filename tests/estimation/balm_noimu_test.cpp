@@ -6,16 +6,16 @@
 
 #include "hylo/config/run_config.h"
 #include "hylo/estimation/odometry_pipeline.h"
-#include "hylo/io/log_reader.h"
-#include "hylo/io/scan_folder.h"
+#include "hylo/logs/log_reader.h"
+#include "hylo/logs/scan_folder.h"
 #include "test_data.h"
 #include "estimation/param_printers.h"
 
 namespace hylo::estimation {
 namespace {
 
-// One case per back-end, both from the shipped config/handheld_noimu.yaml, so the figures are
-// what `hylo map --config config/handheld_noimu.yaml` gives. The target: 2 cm / 0.2 deg RMSE
+// One case per back-end, both from the shipped config/presets/handheld_noimu.yaml, so the figures are
+// what `hylo map --config config/presets/handheld_noimu.yaml` gives. The target: 2 cm / 0.2 deg RMSE
 // against the first pose. The data README notes the reference poses agree with scan-to-scan
 // ICP within ~1.5 cm / 0.14 deg, so a drifting SLAM run sits near 2 cm by construction;
 // measured 1.85 cm / 0.10 deg with either back-end (the robust registration starts every
@@ -31,23 +31,23 @@ TEST_P(BalmScansNoImu, PosesStayWithinTwoCentimetresAndPointTwoDegreesOfTheRefer
   HYLO_REQUIRE_DATA("balm_scans/poses.csv");
   const std::string dir = hylo::testing::DataPath("balm_scans");
   const config::RunConfig run =
-      config::LoadRunConfig(std::string(HYLO_SOURCE_DIR) + "/config/handheld_noimu.yaml");
+      config::LoadRunConfig(std::string(HYLO_SOURCE_DIR) + "/config/presets/handheld_noimu.yaml");
   OdometryPipelineOptions options = run.PipelineOptions();
   ASSERT_FALSE(options.imu.enabled);
   options.estimator.backend = GetParam().backend;
   OdometryPipeline pipeline(options);
-  io::LogReadOptions read;
+  logs::LogReadOptions read;
   read.imu_topic.clear();
-  auto log = io::OpenLog(dir, read);
-  io::LogMessage message;
+  auto log = logs::OpenLog(dir, read);
+  logs::LogMessage message;
   std::vector<ScanResult> results;
   while (log->Next(&message)) {
-    if (message.kind != io::LogMessage::Kind::kScan) continue;
+    if (message.kind != logs::LogMessage::Kind::kScan) continue;
     pipeline.AddScan(std::move(message.scan));
     pipeline.Process(&results);
   }
   pipeline.Process(&results, true);
-  const std::vector<io::StampedPose> reference = io::ReadScanFolderPoses(dir);
+  const std::vector<io::StampedPose> reference = logs::ReadScanFolderPoses(dir);
   ASSERT_GE(results.size(), 18u);
   std::size_t compared = 0;
   double sum_sq_m = 0.0, sum_sq_deg = 0.0;

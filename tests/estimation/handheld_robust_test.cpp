@@ -1,5 +1,5 @@
 // Lidar-only odometry must hold on real hand-held data with one configuration: every stretch
-// of the data README through both back-ends with the shipped config/handheld_noimu.yaml, at
+// of the data README through both back-ends with the shipped config/presets/handheld_noimu.yaml, at
 // the recorded 2 Hz and with every other scan dropped (1 Hz: the motion between two scans
 // doubles, up to 69° and 1.1 m off the constant-velocity prediction). The bounds are the
 // targets of the lidar-only path (ATE ≤ 3 cm after SE(3) alignment, no one-scan step off by
@@ -33,7 +33,7 @@ TEST_P(HandheldStretch, TracksWithinThreeCentimetresAndNoStepOffByMoreThanEightC
   const HandheldCase& c = GetParam();
   HYLO_REQUIRE_DATA(c.stretch + "/poses.csv");
   config::RunConfig run =
-      config::LoadRunConfig(std::string(HYLO_SOURCE_DIR) + "/config/handheld_noimu.yaml");
+      config::LoadRunConfig(std::string(HYLO_SOURCE_DIR) + "/config/presets/handheld_noimu.yaml");
   run.pipeline.estimator.backend = c.backend;
   const hylo::testing::StretchRun r = hylo::testing::RunStretch(hylo::testing::DataPath(c.stretch),
                                                                 run.PipelineOptions(), c.stride);

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "hylo/io/log_reader.h"
-#include "hylo/io/scan_folder.h"
+#include "hylo/logs/log_reader.h"
+#include "hylo/logs/scan_folder.h"
 
 namespace hylo::testing {
 
@@ -31,15 +31,15 @@ double Quantile(std::vector<double> values, double q) {
 StretchRun RunStretch(const std::string& dir, const estimation::OdometryPipelineOptions& options,
                       int stride, std::size_t max_scans) {
   estimation::OdometryPipeline pipeline(options);
-  io::LogReadOptions read;
+  logs::LogReadOptions read;
   read.imu_topic.clear();
-  auto log = io::OpenLog(dir, read);
-  io::LogMessage message;
+  auto log = logs::OpenLog(dir, read);
+  logs::LogMessage message;
   StretchRun run;
   std::vector<estimation::NavState> finalized;
   std::size_t seen = 0, fed = 0;
   while (log->Next(&message) && (max_scans == 0 || fed < max_scans)) {
-    if (message.kind != io::LogMessage::Kind::kScan) continue;
+    if (message.kind != logs::LogMessage::Kind::kScan) continue;
     if (seen++ % static_cast<std::size_t>(stride) != 0) continue;
     ++fed;
     pipeline.AddScan(std::move(message.scan));
@@ -60,7 +60,7 @@ StretchRun RunStretch(const std::string& dir, const estimation::OdometryPipeline
     if (r.update.robust.attempts > 0 && !r.update.robust.passed) ++run.unchecked_scans;
     if (!r.update.applied) ++run.not_applied;
   }
-  for (const io::StampedPose& p : io::ReadScanFolderPoses(dir)) {
+  for (const io::StampedPose& p : logs::ReadScanFolderPoses(dir)) {
     reference.push_back({p.t_ns, p.T_world_body()});
   }
   run.scans = run.results.size();

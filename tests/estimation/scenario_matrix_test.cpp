@@ -22,7 +22,7 @@ TEST_P(ScenarioMatrix, NoBackendDivergesInSlamOrLocalization) {
   scenario.max_drive_a_s = 15.0;
   scenario.max_drive_b_s = 8.0;
   ScenarioRunOptions options;
-  options.preset_dir = std::string(HYLO_SOURCE_DIR) + "/config";
+  options.preset_dir = std::string(HYLO_SOURCE_DIR) + "/config/presets";
   const ScenarioFigures f = RunScenario(scenario, options);
   std::printf("scenario %llu: %s\n", static_cast<unsigned long long>(f.number), f.summary.c_str());
   ASSERT_EQ(f.runs.size(), 2u);

@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "fuzz_support.h"
-#include "hylo/io/ros_bridge.h"
+#include "hylo/logs/ros_bridge.h"
 
 namespace {
 
@@ -18,12 +18,12 @@ bool Same(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   sensor_msgs::Imu msg;
   try {
-    msg = hylo::io::ros_bridge::Deserialize<sensor_msgs::Imu>(data, size);
+    msg = hylo::logs::ros_bridge::Deserialize<sensor_msgs::Imu>(data, size);
   } catch (const ros::serialization::StreamOverrunException&) {
     return 0;  // the bag reader reports it as a corrupt message, naming the bag
   }
   const double g = 9.80665;  // a driver that reports g (Livox)
-  const hylo::ImuSample imu = hylo::io::ros_bridge::FromRos(msg, g);
+  const hylo::ImuSample imu = hylo::logs::ros_bridge::FromRos(msg, g);
   // ROS stamps are unsigned seconds + nanoseconds: always a non-negative int64 of ns.
   hylo::fuzz::Require(imu.t_ns >= 0 && imu.t_ns == int64_t{msg.header.stamp.sec} * 1000000000 +
                                                        msg.header.stamp.nsec,

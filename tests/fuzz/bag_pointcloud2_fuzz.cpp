@@ -8,14 +8,14 @@
 #include <stdexcept>
 
 #include "fuzz_support.h"
-#include "hylo/io/pointcloud2.h"
-#include "hylo/io/ros_bridge.h"
+#include "hylo/logs/pointcloud2.h"
+#include "hylo/logs/ros_bridge.h"
 
 namespace {
 
 using hylo::LidarScan;
 using hylo::fuzz::Require;
-using hylo::io::PointTimeConvention;
+using hylo::logs::PointTimeConvention;
 
 constexpr PointTimeConvention kConventions[] = {
     PointTimeConvention::kAuto,  PointTimeConvention::kVelodyne,  PointTimeConvention::kOuster,
@@ -23,7 +23,7 @@ constexpr PointTimeConvention kConventions[] = {
     PointTimeConvention::kNone};
 
 // What DecodePointCloud2 promises about a scan it returns.
-void CheckScan(const hylo::io::PointCloud2Message& cloud, const LidarScan& scan,
+void CheckScan(const hylo::logs::PointCloud2Message& cloud, const LidarScan& scan,
                std::size_t dropped) {
   Require(scan.points.size() + dropped == uint64_t{cloud.width} * cloud.height,
           "decoded + dropped points differ from width * height");
@@ -40,16 +40,16 @@ void CheckScan(const hylo::io::PointCloud2Message& cloud, const LidarScan& scan,
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
   const PointTimeConvention convention = kConventions[data[0] % std::size(kConventions)];
-  hylo::io::PointCloud2Message cloud;
+  hylo::logs::PointCloud2Message cloud;
   try {
-    cloud = hylo::io::ros_bridge::FromRos(
-        hylo::io::ros_bridge::Deserialize<sensor_msgs::PointCloud2>(data + 1, size - 1));
+    cloud = hylo::logs::ros_bridge::FromRos(
+        hylo::logs::ros_bridge::Deserialize<sensor_msgs::PointCloud2>(data + 1, size - 1));
   } catch (const ros::serialization::StreamOverrunException&) {
     return 0;  // the bag reader reports it as a corrupt message, naming the bag
   }
   try {
     std::size_t dropped = 0;
-    const LidarScan scan = hylo::io::DecodePointCloud2(cloud, convention, &dropped);
+    const LidarScan scan = hylo::logs::DecodePointCloud2(cloud, convention, &dropped);
     CheckScan(cloud, scan, dropped);
   } catch (const std::runtime_error& e) {
     hylo::fuzz::RequireClearError(e, "");  // callers add the file name

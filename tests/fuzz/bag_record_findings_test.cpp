@@ -12,11 +12,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "hylo/io/bag_reader.h"
-#include "hylo/io/bag_writer.h"
+#include "hylo/logs/bag_reader.h"
+#include "hylo/logs/bag_writer.h"
 #include "test_data.h"
 
-namespace hylo::io {
+namespace hylo::logs {
 namespace {
 
 constexpr int kMessages = 5;  // four IMU samples and a scan
@@ -140,4 +140,4 @@ TEST_F(BagRecordFindings, TopicWithALineBreakGivesAOneLineError) {
 }
 
 }  // namespace
-}  // namespace hylo::io
+}  // namespace hylo::logs

@@ -13,13 +13,13 @@
 #include "bag_records.h"
 #include "bag_recovered_reader.h"
 #include "fuzz_support.h"
-#include "hylo/io/log_reader.h"
+#include "hylo/logs/log_reader.h"
 
 namespace {
 
 using hylo::fuzz::Require;
-namespace io = hylo::io;
-namespace detail = hylo::io::detail;
+namespace logs = hylo::logs;
+namespace detail = hylo::logs::detail;
 
 volatile uint32_t g_sink = 0;  // keeps the message reads below
 
@@ -49,11 +49,11 @@ void WalkRecords(const std::string& path) {
 
 // What a LogReader promises about the scans and samples it yields.
 void ReadMessages(const std::string& path) {
-  io::LogReadOptions options;  // /points and /imu, the convention detected
+  logs::LogReadOptions options;  // /points and /imu, the convention detected
   auto reader = detail::OpenRecoveredBag(path, options, "fuzzed");
-  io::LogMessage m;
+  logs::LogMessage m;
   while (reader->Next(&m)) {
-    if (m.kind == io::LogMessage::Kind::kImu) {
+    if (m.kind == logs::LogMessage::Kind::kImu) {
       Require(m.imu.accel_imu.allFinite() && m.imu.gyro_imu.allFinite(),
               "a non-finite IMU sample was delivered");
       continue;
@@ -65,10 +65,10 @@ void ReadMessages(const std::string& path) {
               "a point's time offset lies outside [t_ns, end_t_ns]");
     }
   }
-  const io::LogRecovery* recovery = reader->recovery();
+  const logs::LogRecovery* recovery = reader->recovery();
   Require(recovery != nullptr, "the record-by-record reader reports no recovery");
   Require(recovery->unreadable_bytes <= recovery->file_bytes, "more unreadable bytes than bytes");
-  const io::LogReadCounters& counters = reader->counters();
+  const logs::LogReadCounters& counters = reader->counters();
   Require(counters.imu_messages + counters.scan_messages <= recovery->messages,
           "more messages delivered than found");
 }

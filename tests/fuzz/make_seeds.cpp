@@ -17,18 +17,19 @@
 #include <vector>
 
 #include "hylo/config/run_config.h"
-#include "hylo/io/bag_writer.h"
+#include "hylo/logs/bag_writer.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/json.h"
-#include "hylo/io/pointcloud2.h"
-#include "hylo/io/ros_bridge.h"
+#include "hylo/logs/pointcloud2.h"
+#include "hylo/logs/ros_bridge.h"
 #include "hylo/io/trajectory_io.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 namespace io = hylo::io;
-using io::PointTimeConvention;
+namespace logs = hylo::logs;
+using logs::PointTimeConvention;
 
 fs::path g_out;
 
@@ -78,11 +79,11 @@ hylo::LidarScan SmallScan() {
 }
 
 // The same cloud with every field byte-swapped and is_bigendian set.
-io::PointCloud2Message BigEndian(io::PointCloud2Message cloud) {
+logs::PointCloud2Message BigEndian(logs::PointCloud2Message cloud) {
   for (uint32_t i = 0; i < cloud.width * cloud.height; ++i) {
-    for (const io::PointFieldInfo& f : cloud.fields) {
+    for (const logs::PointFieldInfo& f : cloud.fields) {
       uint8_t* at = cloud.data.data() + i * cloud.point_step + f.offset;
-      std::reverse(at, at + io::PointFieldSize(f.datatype));
+      std::reverse(at, at + logs::PointFieldSize(f.datatype));
     }
   }
   cloud.is_bigendian = true;
@@ -90,8 +91,8 @@ io::PointCloud2Message BigEndian(io::PointCloud2Message cloud) {
 }
 
 // Two rows with 4 padding bytes after each (row_step > width * point_step).
-io::PointCloud2Message Organized(const io::PointCloud2Message& flat) {
-  io::PointCloud2Message cloud = flat;
+logs::PointCloud2Message Organized(const logs::PointCloud2Message& flat) {
+  logs::PointCloud2Message cloud = flat;
   cloud.height = 2;
   cloud.width = flat.width / 2;
   cloud.row_step = cloud.width * cloud.point_step + 4;
@@ -110,18 +111,18 @@ void PointCloud2Seeds() {
       PointTimeConvention::kRobosense, PointTimeConvention::kLivox,  PointTimeConvention::kNone};
   // The target's first byte: 0 = auto, then the conventions in this order.
   for (std::size_t k = 0; k < std::size(layouts); ++k) {
-    const io::PointCloud2Message cloud = io::EncodePointCloud2(SmallScan(), layouts[k]);
-    const std::string name = io::ToString(layouts[k]);
+    const logs::PointCloud2Message cloud = logs::EncodePointCloud2(SmallScan(), layouts[k]);
+    const std::string name = logs::ToString(layouts[k]);
     const std::string auto_byte(1, '\0');
     const std::string own_byte(1, static_cast<char>(k + 1));
     Emit("bag_pointcloud2", name + "_auto",
-         auto_byte + Serialized(io::ros_bridge::ToRos(io::PointCloud2Message(cloud))));
+         auto_byte + Serialized(logs::ros_bridge::ToRos(logs::PointCloud2Message(cloud))));
     Emit("bag_pointcloud2", name,
-         own_byte + Serialized(io::ros_bridge::ToRos(io::PointCloud2Message(cloud))));
+         own_byte + Serialized(logs::ros_bridge::ToRos(logs::PointCloud2Message(cloud))));
     Emit("bag_pointcloud2", name + "_big_endian",
-         auto_byte + Serialized(io::ros_bridge::ToRos(BigEndian(cloud))));
+         auto_byte + Serialized(logs::ros_bridge::ToRos(BigEndian(cloud))));
     Emit("bag_pointcloud2", name + "_organized",
-         auto_byte + Serialized(io::ros_bridge::ToRos(Organized(cloud))));
+         auto_byte + Serialized(logs::ros_bridge::ToRos(Organized(cloud))));
   }
 }
 
@@ -156,10 +157,10 @@ std::string WithoutHeaderPadding(const std::string& bag) {
 }
 
 // Three IMU samples, a scan (with a NaN point), one more sample: one chunk.
-std::string SmallBag(io::BagCompression compression) {
+std::string SmallBag(logs::BagCompression compression) {
   const std::string path = Scratch("b.bag");
   {
-    io::BagWriter writer(path, compression);
+    logs::BagWriter writer(path, compression);
     const hylo::LidarScan scan = SmallScan();
     for (int i = 0; i < 4; ++i) {
       hylo::ImuSample imu;
@@ -174,12 +175,12 @@ std::string SmallBag(io::BagCompression compression) {
 }
 
 void BagRecordSeeds() {
-  const std::string none = SmallBag(io::BagCompression::kNone);
+  const std::string none = SmallBag(logs::BagCompression::kNone);
   Emit("bag_records", "none_padded", none);
   const std::string compact = WithoutHeaderPadding(none);
   Emit("bag_records", "none", compact);
-  Emit("bag_records", "bz2", WithoutHeaderPadding(SmallBag(io::BagCompression::kBz2)));
-  const std::string lz4 = WithoutHeaderPadding(SmallBag(io::BagCompression::kLz4));
+  Emit("bag_records", "bz2", WithoutHeaderPadding(SmallBag(logs::BagCompression::kBz2)));
+  const std::string lz4 = WithoutHeaderPadding(SmallBag(logs::BagCompression::kLz4));
   Emit("bag_records", "lz4", lz4);
   // Cut short: inside the chunk (uncompressed: inside the scan; lz4: inside its blocks), and
   // right after the chunk (the index lost, every message whole).

@@ -15,9 +15,9 @@
 #include "hylo/config/run_config.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/json.h"
-#include "hylo/io/pointcloud2.h"
-#include "hylo/io/ros_bridge.h"
-#include "hylo/io/scan_folder.h"
+#include "hylo/logs/pointcloud2.h"
+#include "hylo/logs/ros_bridge.h"
+#include "hylo/logs/scan_folder.h"
 #include "hylo/io/trajectory_io.h"
 #include "hylo/registration/pose_guess.h"
 #include "test_data.h"
@@ -25,7 +25,7 @@
 namespace hylo {
 namespace {
 
-using io::PointTimeConvention;
+using logs::PointTimeConvention;
 
 std::string WriteFile(const std::string& dir, const std::string& name, const std::string& text) {
   const std::string path = dir + "/" + name;
@@ -79,11 +79,11 @@ LidarScan TwoPointScan() {
 }
 
 // Sets the per-point time field of point `i` (float32 or float64 as the layout has it).
-void SetTime(io::PointCloud2Message* cloud, const char* field, std::size_t i, double value) {
-  for (const io::PointFieldInfo& f : cloud->fields) {
+void SetTime(logs::PointCloud2Message* cloud, const char* field, std::size_t i, double value) {
+  for (const logs::PointFieldInfo& f : cloud->fields) {
     if (f.name != field) continue;
     uint8_t* at = cloud->data.data() + i * cloud->point_step + f.offset;
-    if (f.datatype == io::kFloat64) {
+    if (f.datatype == logs::kFloat64) {
       std::memcpy(at, &value, sizeof(value));
     } else {
       const float v = static_cast<float>(value);
@@ -93,7 +93,7 @@ void SetTime(io::PointCloud2Message* cloud, const char* field, std::size_t i, do
 }
 
 TEST(ReaderFindings, PointCloud2FieldNameWithALineBreakGivesAOneLineError) {
-  io::PointCloud2Message cloud = EncodePointCloud2(TwoPointScan(), PointTimeConvention::kNone);
+  logs::PointCloud2Message cloud = EncodePointCloud2(TwoPointScan(), PointTimeConvention::kNone);
   cloud.fields[2].name = "z\nmore";
   const std::string error = ErrorOf<std::runtime_error>(
       [&] { DecodePointCloud2(cloud, PointTimeConvention::kAuto, nullptr); });
@@ -101,14 +101,14 @@ TEST(ReaderFindings, PointCloud2FieldNameWithALineBreakGivesAOneLineError) {
 }
 
 TEST(ReaderFindings, PointCloud2WithEmptyRowsIsAnEmptyScan) {
-  io::PointCloud2Message cloud = EncodePointCloud2(TwoPointScan(), PointTimeConvention::kNone);
+  logs::PointCloud2Message cloud = EncodePointCloud2(TwoPointScan(), PointTimeConvention::kNone);
   cloud.width = 0;
   cloud.height = std::numeric_limits<uint32_t>::max();  // walked row by row, this took seconds
   EXPECT_TRUE(DecodePointCloud2(cloud, PointTimeConvention::kAuto, nullptr).points.empty());
 }
 
 TEST(ReaderFindings, PointCloud2RelativeTimeBeyondInt64IsDroppedAndCounted) {
-  io::PointCloud2Message cloud = EncodePointCloud2(TwoPointScan(), PointTimeConvention::kVelodyne);
+  logs::PointCloud2Message cloud = EncodePointCloud2(TwoPointScan(), PointTimeConvention::kVelodyne);
   cloud.stamp_ns = 4'294'967'295'999'999'999;  // the largest ROS stamp
   SetTime(&cloud, "time", 1, 8.9e9);           // + 8.9e18 ns overflowed int64
   std::size_t dropped = 0;
@@ -118,7 +118,7 @@ TEST(ReaderFindings, PointCloud2RelativeTimeBeyondInt64IsDroppedAndCounted) {
 }
 
 TEST(ReaderFindings, PointCloud2TimesAtBothEndsOfInt64AreASpanError) {
-  io::PointCloud2Message cloud = EncodePointCloud2(TwoPointScan(), PointTimeConvention::kHesai);
+  logs::PointCloud2Message cloud = EncodePointCloud2(TwoPointScan(), PointTimeConvention::kHesai);
   SetTime(&cloud, "timestamp", 0, -9.0e9);  // their difference overflowed int64
   SetTime(&cloud, "timestamp", 1, 9.0e9);
   const std::string error = ErrorOf<std::runtime_error>(
@@ -127,8 +127,8 @@ TEST(ReaderFindings, PointCloud2TimesAtBothEndsOfInt64AreASpanError) {
 }
 
 TEST(ReaderFindings, BagMessageArrayLongerThanTheMessageIsRefusedBeforeAllocating) {
-  io::PointCloud2Message cloud = EncodePointCloud2(TwoPointScan(), PointTimeConvention::kNone);
-  const sensor_msgs::PointCloud2 msg = io::ros_bridge::ToRos(std::move(cloud));
+  logs::PointCloud2Message cloud = EncodePointCloud2(TwoPointScan(), PointTimeConvention::kNone);
+  const sensor_msgs::PointCloud2 msg = logs::ros_bridge::ToRos(std::move(cloud));
   std::vector<uint8_t> bytes(ros::serialization::serializationLength(msg));
   ros::serialization::OStream out(bytes.data(), static_cast<uint32_t>(bytes.size()));
   ros::serialization::serialize(out, msg);
@@ -137,7 +137,7 @@ TEST(ReaderFindings, BagMessageArrayLongerThanTheMessageIsRefusedBeforeAllocatin
   const uint32_t huge = 0xFFFFFFF0u;
   std::memcpy(bytes.data() + bytes.size() - 1 - 32 - 4, &huge, sizeof(huge));
   const std::string error = ErrorOf<ros::serialization::StreamOverrunException>(
-      [&] { io::ros_bridge::Deserialize<sensor_msgs::PointCloud2>(bytes.data(), bytes.size()); });
+      [&] { logs::ros_bridge::Deserialize<sensor_msgs::PointCloud2>(bytes.data(), bytes.size()); });
   EXPECT_NE(error.find("announces 4294967280 elements"), std::string::npos) << error;
 }
 
@@ -235,11 +235,11 @@ TEST_F(ReaderFindingsFiles, ScanFolderIndexTooLargeToStampAtTenHertzHasNoStamp) 
   io::CloudFile cloud;
   cloud.positions = {{1, 2, 3}};
   io::WriteCloud(dir_ + "/scan_123456789012.pcd", cloud);  // x 1e8 ns overflowed int64
-  const io::ScanFolderIndex index = io::IndexScanFolder(dir_);
+  const logs::ScanFolderIndex index = logs::IndexScanFolder(dir_);
   ASSERT_EQ(index.scans.size(), 1u);
   EXPECT_FALSE(index.scans[0].has_time);
   ExpectOneLineNaming(
-      ErrorOf<std::runtime_error>([&] { io::OpenScanFolder(dir_, io::LogReadOptions{}); }),
+      ErrorOf<std::runtime_error>([&] { logs::OpenScanFolder(dir_, logs::LogReadOptions{}); }),
       "scan_123456789012.pcd", "beyond the int64 ns range");
 }
 
@@ -249,7 +249,7 @@ TEST_F(ReaderFindingsFiles, BalmPoseWithANonFiniteNumberIsAnError) {
   io::WriteCloud(dir_ + "/scan0.pcd", cloud);
   const std::string poses =
       WriteFile(dir_, "poses.csv", "1,0,0,inf\n0,1,0,0\n0,0,1,0\n0,0,0,1.5\n");
-  ExpectOneLineNaming(ErrorOf<std::runtime_error>([&] { io::IndexScanFolder(dir_); }), poses,
+  ExpectOneLineNaming(ErrorOf<std::runtime_error>([&] { logs::IndexScanFolder(dir_); }), poses,
                       "line 1: 'inf' is not a finite number");
 }
 

@@ -19,12 +19,13 @@
 
 #include "fuzz_support.h"
 #include "hylo/io/cloud_io.h"
-#include "hylo/io/scan_folder.h"
+#include "hylo/logs/scan_folder.h"
 
 namespace {
 
 using hylo::fuzz::Require;
 namespace io = hylo::io;
+namespace logs = hylo::logs;
 
 constexpr const char* kExtensions[] = {".pcd", ".ply", ".bin"};
 
@@ -60,9 +61,9 @@ void WriteFile(const std::string& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
 }
 
-void CheckIndex(const io::ScanFolderIndex& index) {
+void CheckIndex(const logs::ScanFolderIndex& index) {
   for (std::size_t i = 0; i < index.scans.size(); ++i) {
-    const io::ScanFolderEntry& e = index.scans[i];
+    const logs::ScanFolderEntry& e = index.scans[i];
     Require(i == 0 || index.scans[i - 1].index < e.index, "scan indexes not strictly increasing");
     Require(!e.has_pose || e.has_time, "a pose without a stamp");
     if (e.has_pose) {
@@ -72,15 +73,15 @@ void CheckIndex(const io::ScanFolderIndex& index) {
   }
 }
 
-void CheckDescription(const io::ScanFolderIndex& index, const io::ScanFolderDescription& d) {
+void CheckDescription(const logs::ScanFolderIndex& index, const logs::ScanFolderDescription& d) {
   Require(d.scan_count == index.scans.size(), "description counts other scans");
   Require(d.scans_with_pose + d.scans_without_pose == d.scan_count, "pose counts do not add up");
   Require(std::isfinite(d.time_span_s) && d.time_span_s >= 0.0, "time span negative or NaN");
 }
 
-void ReadAll(const std::string& dir, const io::ScanFolderIndex& index) {
-  const auto reader = io::OpenScanFolder(dir, io::LogReadOptions{});
-  io::LogMessage message;
+void ReadAll(const std::string& dir, const logs::ScanFolderIndex& index) {
+  const auto reader = logs::OpenScanFolder(dir, logs::LogReadOptions{});
+  logs::LogMessage message;
   std::size_t k = 0;
   while (reader->Next(&message)) {
     Require(k < index.scans.size(), "the reader delivers more scans than the index lists");
@@ -114,14 +115,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   if (kPoseFiles[pose_kind] != nullptr) WriteFile(dir + "/" + kPoseFiles[pose_kind], parts[0]);
   if (pose_kind == 3) WriteFile(dir + "/times.txt", parts.size() > 1 ? parts[1] : "");
   try {
-    const io::ScanFolderIndex index = io::IndexScanFolder(dir);
+    const logs::ScanFolderIndex index = logs::IndexScanFolder(dir);
     CheckIndex(index);
-    CheckDescription(index, io::DescribeScanFolder(dir));
+    CheckDescription(index, logs::DescribeScanFolder(dir));
     std::vector<std::size_t> positions;
-    const std::vector<io::StampedPose> poses = io::ReadScanFolderPoses(dir, &positions);
+    const std::vector<io::StampedPose> poses = logs::ReadScanFolderPoses(dir, &positions);
     Require(poses.size() == positions.size(), "poses and their scan positions differ in number");
     const bool all_stamped = std::all_of(index.scans.begin(), index.scans.end(),
-                                         [](const io::ScanFolderEntry& e) { return e.has_time; });
+                                         [](const logs::ScanFolderEntry& e) { return e.has_time; });
     if (all_stamped) ReadAll(dir, index);
   } catch (const std::runtime_error& e) {
     hylo::fuzz::RequireClearError(e, dir);

@@ -6,9 +6,9 @@
 #include <memory>
 #include <utility>
 
-#include "hylo/io/bag_reader.h"
-#include "hylo/io/pointcloud2.h"
-#include "hylo/io/ros_bridge.h"
+#include "hylo/logs/bag_reader.h"
+#include "hylo/logs/pointcloud2.h"
+#include "hylo/logs/ros_bridge.h"
 
 namespace hylo::testing {
 
@@ -36,19 +36,19 @@ bool BagPlayer::SleepUntil(std::chrono::steady_clock::time_point deadline) {
 void BagPlayer::Play(std::chrono::milliseconds connect_timeout) {
   std::string error;
   try {
-    const std::unique_ptr<io::LogReader> reader = io::OpenBag(bag_path_, io::LogReadOptions());
+    const std::unique_ptr<logs::LogReader> reader = logs::OpenBag(bag_path_, logs::LogReadOptions());
     const auto connect_deadline = std::chrono::steady_clock::now() + connect_timeout;
     while (points_.getNumSubscribers() == 0 || imu_.getNumSubscribers() == 0) {
       if (std::chrono::steady_clock::now() > connect_deadline) break;
       if (!SleepUntil(std::chrono::steady_clock::now() + std::chrono::milliseconds(50))) return;
     }
     // Receive times, as the bag orders its records: a sample's stamp, a scan's end.
-    io::LogMessage message;
+    logs::LogMessage message;
     std::chrono::steady_clock::time_point start;
     int64_t first_t_ns = 0;
     int64_t latest_t_ns = std::numeric_limits<int64_t>::min();
     while (reader->Next(&message)) {
-      const bool is_imu = message.kind == io::LogMessage::Kind::kImu;
+      const bool is_imu = message.kind == logs::LogMessage::Kind::kImu;
       const int64_t t_ns = is_imu ? message.imu.t_ns : message.scan.end_t_ns;
       if (latest_t_ns == std::numeric_limits<int64_t>::min()) {
         start = std::chrono::steady_clock::now();
@@ -57,12 +57,12 @@ void BagPlayer::Play(std::chrono::milliseconds connect_timeout) {
       latest_t_ns = std::max(latest_t_ns, t_ns);
       if (!SleepUntil(start + std::chrono::nanoseconds(latest_t_ns - first_t_ns))) return;
       if (is_imu) {
-        imu_.publish(io::ros_bridge::ToRos(message.imu, "imu"));
+        imu_.publish(logs::ros_bridge::ToRos(message.imu, "imu"));
       } else {
-        io::PointCloud2Message cloud =
-            io::EncodePointCloud2(message.scan, reader->time_convention());
+        logs::PointCloud2Message cloud =
+            logs::EncodePointCloud2(message.scan, reader->time_convention());
         cloud.frame_id = "lidar";
-        points_.publish(io::ros_bridge::ToRos(std::move(cloud)));
+        points_.publish(logs::ros_bridge::ToRos(std::move(cloud)));
       }
       ++published_;
     }

@@ -12,7 +12,7 @@ namespace {
 
 TEST(ExampleConfig, RosExampleLoadsWithItsFramesAndTopics) {
   const config::RunConfig config =
-      config::LoadRunConfig(std::string(HYLO_SOURCE_DIR) + "/config/ros_example.yaml");
+      config::LoadRunConfig(std::string(HYLO_SOURCE_DIR) + "/config/presets/ros_example.yaml");
   EXPECT_EQ(config.lidar.topic, "/velodyne_points");
   EXPECT_EQ(config.imu.topic, "/imu/data");
   EXPECT_EQ(config.output.map_frame, "map");

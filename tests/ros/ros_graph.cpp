@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <thread>
 
-#include "hylo/io/ros_bridge.h"
+#include "hylo/logs/ros_bridge.h"
 #include "hylo/io/trajectory_io.h"
 #include "ros_messages.h"
 
@@ -130,7 +130,7 @@ std::vector<evaluation::TimedPose> PosesOf(const std::vector<nav_msgs::Odometry>
   std::vector<evaluation::TimedPose> poses;
   for (const nav_msgs::Odometry& odom : odometry) {
     evaluation::TimedPose pose;
-    pose.t_ns = io::ros_bridge::FromRosTime(odom.header.stamp);
+    pose.t_ns = logs::ros_bridge::FromRosTime(odom.header.stamp);
     pose.T_world_body = rosnode::FromRos(odom.pose.pose);
     poses.push_back(pose);
   }

@@ -19,7 +19,7 @@
 
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/costmap_io.h"
-#include "hylo/io/ros_bridge.h"
+#include "hylo/logs/ros_bridge.h"
 #include "ros_graph.h"
 #include "ros_messages.h"
 #include "test_data.h"
@@ -31,7 +31,7 @@ using hylo::testing::ChildProcess;
 using hylo::testing::Tail;
 using std::chrono::seconds;
 
-const std::string kConfig = std::string(HYLO_SOURCE_DIR) + "/config/sim_vlp16.yaml";
+const std::string kConfig = std::string(HYLO_SOURCE_DIR) + "/config/presets/sim_vlp16.yaml";
 constexpr double kSlamAteBoundM = 0.15;            // `hylo map` reaches ~0.03 m offline on this bag
 constexpr double kLocalizationErrorBoundM = 0.15;  // `hylo localize`: ~0.002 m offline
 
@@ -215,7 +215,7 @@ TEST_F(RosNodeIntegration, LocalizesInAShiftedPriorMapAndRelocalizesOnRequest) {
   Eigen::Isometry3d now;
   {
     std::lock_guard<std::mutex> lock(c.mutex);
-    const int64_t t_ns = io::ros_bridge::FromRosTime(c.odometry.back().header.stamp);
+    const int64_t t_ns = logs::ros_bridge::FromRosTime(c.odometry.back().header.stamp);
     ASSERT_TRUE(evaluation::InterpolatePose(truth, t_ns, &now));
   }
   nav_msgs::SetMap relocalize;

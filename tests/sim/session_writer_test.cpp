@@ -11,7 +11,7 @@
 #include <string>
 
 #include "hylo/io/cloud_io.h"
-#include "hylo/io/log_reader.h"
+#include "hylo/logs/log_reader.h"
 #include "hylo/sim_io/reference_outputs.h"
 
 namespace hylo::sim {
@@ -61,13 +61,13 @@ TEST(SessionWriter, BagReadsBackWithRatesAndTimeField) {
   const fs::path dir = FreshDir("sim_readback");
   const Site site = BuildSite(options.seed, options.terrain);
   const SessionSummary summary = WriteSession(options, site, SessionId::kA, dir.string());
-  auto reader = io::OpenLog(SessionBagPath(dir.string(), SessionId::kA), io::LogReadOptions{});
-  io::LogMessage message;
+  auto reader = logs::OpenLog(SessionBagPath(dir.string(), SessionId::kA), logs::LogReadOptions{});
+  logs::LogMessage message;
   std::vector<int64_t> imu_t, scan_t;
   std::size_t points = 0;
   int64_t max_offset = 0;
   while (reader->Next(&message)) {
-    if (message.kind == io::LogMessage::Kind::kImu) {
+    if (message.kind == logs::LogMessage::Kind::kImu) {
       imu_t.push_back(message.imu.t_ns);
     } else {
       scan_t.push_back(message.scan.t_ns);
@@ -76,7 +76,7 @@ TEST(SessionWriter, BagReadsBackWithRatesAndTimeField) {
         max_offset = std::max<int64_t>(max_offset, p.offset_ns);
     }
   }
-  EXPECT_EQ(reader->time_convention(), io::PointTimeConvention::kVelodyne);
+  EXPECT_EQ(reader->time_convention(), logs::PointTimeConvention::kVelodyne);
   ASSERT_EQ(imu_t.size(), summary.imu_samples);
   ASSERT_EQ(scan_t.size(), summary.scans);
   EXPECT_EQ(points, summary.points);

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "hylo/io/ros_bridge.h"
+#include "hylo/logs/ros_bridge.h"
 #include "hylo/registration/pose_guess.h"
 #include "hylo/run/prior_map_io.h"
 #include "ros_messages.h"
@@ -93,13 +93,13 @@ void HyloNode::LoadPriorMap() {
 }
 
 void HyloNode::OnCloud(const sensor_msgs::PointCloud2::ConstPtr& msg) {
-  io::PointCloud2Message cloud = io::ros_bridge::FromRos(*msg);
-  if (convention_ == io::PointTimeConvention::kAuto) {
-    convention_ = io::DetectPointTimeConvention(cloud.fields);
+  logs::PointCloud2Message cloud = logs::ros_bridge::FromRos(*msg);
+  if (convention_ == logs::PointTimeConvention::kAuto) {
+    convention_ = logs::DetectPointTimeConvention(cloud.fields);
   }
   LidarScan scan;
   try {
-    scan = io::DecodePointCloud2(cloud, convention_, nullptr);
+    scan = logs::DecodePointCloud2(cloud, convention_, nullptr);
   } catch (const std::runtime_error& e) {
     ++undecodable_scans_;
     ROS_WARN_THROTTLE(5.0, "hylo_node: %s: scan skipped (%zu so far): %s",

@@ -76,7 +76,7 @@ class HyloNode {
   ros::ServiceServer relocalize_srv_, global_localize_srv_, save_map_srv_;
 
   // Callback side (lidar callback only).
-  io::PointTimeConvention convention_;
+  logs::PointTimeConvention convention_;
   bool lidar_extrinsic_published_ = false;
   std::size_t undecodable_scans_ = 0;
 

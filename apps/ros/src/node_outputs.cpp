@@ -4,7 +4,7 @@
 #include <std_msgs/String.h>
 
 #include "hylo/common/time.h"
-#include "hylo/io/ros_bridge.h"
+#include "hylo/logs/ros_bridge.h"
 #include "hylo/lie/isometry.h"
 #include "hylo/registration/voxel_filter.h"
 
@@ -65,7 +65,7 @@ void NodeOutputs::SetOrigin(const Eigen::Vector3d& origin_world) {
 void NodeOutputs::PublishScan(const estimation::ScanResult& result) {
   const FramePoses poses = ComputeFramePoses(lie::ToIsometry(result.state.T_map_imu()),
                                              lie::ToIsometry(result.T_map_odom), origin_world_);
-  const ros::Time stamp = io::ros_bridge::ToRosTime(result.t_ns);
+  const ros::Time stamp = logs::ros_bridge::ToRosTime(result.t_ns);
   odometry_.publish(ToOdometryMsg(result, poses, frames_));
   tf_.sendTransform({Stamped(poses.T_world_odom, stamp, frames_.map, frames_.odom),
                      Stamped(poses.T_odom_imu, stamp, frames_.odom, frames_.base)});

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cstring>
 
-#include "hylo/io/ros_bridge.h"
+#include "hylo/logs/ros_bridge.h"
 
 namespace hylo::rosnode {
 
-using io::ros_bridge::FromRosTime;
-using io::ros_bridge::ToRosTime;
+using logs::ros_bridge::FromRosTime;
+using logs::ros_bridge::ToRosTime;
 
 ImuSample FromRos(const sensor_msgs::Imu& msg, double accel_scale) {
   ImuSample sample;

@@ -18,7 +18,7 @@
 #include "costmap_grid.h"
 #include "frames.h"
 #include "hylo/estimation/odometry_pipeline.h"
-#include "hylo/io/pointcloud2.h"
+#include "hylo/logs/pointcloud2.h"
 
 namespace hylo::rosnode {
 

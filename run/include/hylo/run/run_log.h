@@ -1,0 +1,69 @@
+#pragma once
+// One recorded log through the odometry pipeline, with everything a run writes: the code
+// behind `hylo map` (SLAM), `hylo localize` (prior map + guess, hybrid mode), `hylo compare`
+// and `hylo demo`, so that every back-end's run produces the same files and summary keys.
+//
+// Files written into out_dir:
+//   config.yaml      the effective configuration
+//   trajectory.tum   T_world_imu per processed scan, stamped at scan end (TUM): the finalized
+//                    states (the smoother's estimate of each scan once it left the window)
+//   trajectory_live.tum  the same scans' live states, as the odometry stream had them
+//   odometry.csv     per scan: pose, body twist, 6×6 pose and twist covariances, health
+//                    (column order documented in the file's header line)
+//   timing.csv       per-scan timing and update figures
+//   map.pcd          the final map (prior + added points, or the SLAM map), world frame
+//   map_added.pcd    hybrid mode: only the points added to the prior during the run
+//   map_dense.pcd    every registered scan at output.dense_map_voxel_m (0 = not written)
+//   summary.json     the summary returned below
+// World frame: the prior map's file frame (its local origin is added back); for SLAM the map
+// frame of the run.
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hylo/config/run_config.h"
+#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/io/json.h"
+#include "hylo/logs/log_reader.h"
+#include "hylo/io/trajectory_io.h"
+
+namespace hylo::run {
+
+struct RunRequest {
+  std::string log;           ///< ROS1 bag or scan folder
+  config::RunConfig config;  ///< the run's configuration (backend, sensors, ...)
+  std::string prior_map;     ///< PCD/PLY prior map; empty = SLAM from scratch
+  std::optional<Eigen::Isometry3d> guess_world_imu;  ///< T_world_imu guess at the start;
+                                                     ///< none with prior_map: a global start
+  double c2c_max_distance_m = 0.5;  ///< outlier threshold of the cloud-to-cloud metric, m
+  std::string out_dir;              ///< created if missing
+  std::string label = "run";        ///< progress label
+  bool show_progress = true;        ///< progress on stderr
+};
+
+struct RunResult {
+  io::Json summary;                              ///< also written to out_dir/summary.json
+  std::vector<io::StampedPose> trajectory;       ///< T_world_imu, finalized, one per scan
+  std::vector<io::StampedPose> live_trajectory;  ///< T_world_imu, live, one per scan
+  std::vector<double> ms_per_scan;               ///< wall time per processed scan, ms
+};
+
+/// The pipeline's counters (scans processed, skipped, not applied, queue drops and gaps) as
+/// the `counters` object of summary.json; the ROS node's health topic carries the same.
+io::Json PipelineCountersJson(const estimation::PipelineCounters& counters);
+
+/// A damaged log's recovery as the `log.recovery` object of summary.json (and `hylo info`).
+io::Json LogRecoveryJson(const logs::LogRecovery& recovery);
+
+/// The IMU faults the queue dropped or noticed, and `unread_non_finite` samples the log reader
+/// already dropped for NaN/inf values, as one line for the user ("" when there were none):
+/// gaps (count, longest, total), duplicated and backward stamps, NaN/inf and clipped samples.
+std::string ImuFaultsLine(const estimation::QueueCounters& queue, std::size_t unread_non_finite);
+
+/// Runs the log. Throws std::runtime_error naming the file and reason for unreadable input,
+/// a failed initialisation (vehicle moving, no accepted ICP start) or a log with no scan.
+RunResult RunLog(const RunRequest& request);
+
+}  // namespace hylo::run

@@ -1,0 +1,296 @@
+#include "hylo/run/run_log.h"
+
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+
+#include "hylo/common/time.h"
+#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/evaluation/cloud_distance.h"
+#include "hylo/io/cloud_io.h"
+#include "hylo/logs/log_reader.h"
+#include "hylo/io/progress.h"
+#include "hylo/registration/voxel_filter.h"
+#include "hylo/run/prior_map_io.h"
+#include "run_outputs.h"
+
+namespace hylo::run {
+namespace {
+
+using estimation::OdometryPipeline;
+using estimation::ScanResult;
+
+io::Json EventsJson(const std::vector<estimation::LocalizationEvent>& events,
+                    const Eigen::Vector3d& origin_world) {
+  io::Json array = io::Json::array();
+  for (const auto& e : events) {
+    io::Json j;
+    j["kind"] = estimation::ToString(e.kind);
+    j["t_s"] = NanosToSeconds(e.t_ns);
+    const Eigen::Vector3d p = e.T_map_imu.translation() + origin_world;
+    j["position_m"] = io::Json::array({p.x(), p.y(), p.z()});
+    const Eigen::Matrix3d& R = e.T_map_imu.linear();
+    j["yaw_deg"] = std::atan2(R(1, 0), R(0, 0)) * 180.0 / M_PI;
+    if (std::isfinite(e.fitness_m2)) j["fitness_m2"] = e.fitness_m2;
+    if (std::isfinite(e.plane_fitness_m2)) j["plane_fitness_m2"] = e.plane_fitness_m2;
+    j["inlier_ratio"] = e.inlier_ratio;
+    j["message"] = e.message;
+    array.push_back(j);
+  }
+  return array;
+}
+
+// The paper's cloud-to-cloud metric: the registered scans against the prior map.
+io::Json CloudToCloudJson(const PointCloud& registered_map,
+                          const registration::NeighborSearch& reference, double max_distance_m) {
+  evaluation::CloudDistanceOptions options;
+  options.max_distance_m = max_distance_m;
+  const evaluation::CloudDistanceSummary s =
+      evaluation::CloudToCloudDistance(registered_map, reference, options);
+  io::Json j;
+  j["ok"] = s.ok;
+  j["mean_m"] = s.mean_m;
+  j["std_m"] = s.std_m;
+  j["median_m"] = s.median_m;
+  j["rejected_fraction"] = s.rejected_fraction;
+  j["points"] = s.num_points;
+  j["max_distance_m"] = max_distance_m;
+  if (!s.ok) j["message"] = s.message;
+  return j;
+}
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double ProcessCpuSeconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+}  // namespace
+
+io::Json PipelineCountersJson(const estimation::PipelineCounters& c) {
+  io::Json j;
+  j["scans_processed"] = c.scans_processed;
+  j["scans_before_init"] = c.scans_before_init;
+  j["scans_initializer"] = c.scans_initializer;
+  j["scans_too_small"] = c.scans_too_small;
+  j["scans_not_applied"] = c.scans_not_applied;
+  j["scans_degenerate"] = c.scans_degenerate;
+  j["scans_bad_health"] = c.scans_bad_health;
+  j["points_dropped_sanitize"] = c.points_dropped_sanitize;
+  j["queue"]["imu_duplicates"] = c.queue.imu_duplicates;
+  j["queue"]["imu_stale"] = c.queue.imu_stale;
+  j["queue"]["scan_duplicates"] = c.queue.scan_duplicates;
+  j["queue"]["scan_stale"] = c.queue.scan_stale;
+  j["queue"]["imu_non_finite"] = c.queue.imu_non_finite;
+  j["queue"]["imu_saturated"] = c.queue.imu_saturated;
+  j["queue"]["imu_gaps"] = c.queue.imu_gaps;
+  j["queue"]["longest_imu_gap_s"] = NanosToSeconds(c.queue.longest_imu_gap_ns);
+  j["queue"]["imu_gap_total_s"] = NanosToSeconds(c.queue.imu_gap_total_ns);
+  j["queue"]["scans_past_imu"] = c.queue.scans_past_imu;
+  return j;
+}
+
+io::Json LogRecoveryJson(const logs::LogRecovery& r) {
+  io::Json j;
+  j["damage"] = r.damage;
+  j["stop_reason"] = r.stop_reason;
+  j["messages_recovered"] = r.messages;
+  j["span_s"] = r.messages > 0 ? r.span_s() : 0.0;
+  j["file_bytes"] = r.file_bytes;
+  j["unreadable_bytes"] = r.unreadable_bytes;
+  j["summary"] = r.Summary();
+  return j;
+}
+
+std::string ImuFaultsLine(const estimation::QueueCounters& q, std::size_t unread_non_finite) {
+  std::string line;
+  const auto add = [&](std::size_t n, const std::string& what) {
+    if (n > 0) line += (line.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+  };
+  if (q.imu_gaps > 0) {
+    char gaps[96];
+    std::snprintf(gaps, sizeof(gaps), "gap%s (longest %.3f s, %.3f s in all)",
+                  q.imu_gaps == 1 ? "" : "s", NanosToSeconds(q.longest_imu_gap_ns),
+                  NanosToSeconds(q.imu_gap_total_ns));
+    add(q.imu_gaps, gaps);
+  }
+  add(q.imu_duplicates, "duplicated stamps dropped");
+  add(q.imu_stale, "stamps going backwards dropped");
+  add(q.imu_non_finite + unread_non_finite, "NaN/inf samples dropped");
+  add(q.imu_saturated, "clipped (full-scale) samples dropped");
+  add(q.scans_past_imu, "scans registered while the IMU was silent");
+  return line;
+}
+
+RunResult RunLog(const RunRequest& request) {
+  const auto run_start = std::chrono::steady_clock::now();
+  const config::RunConfig& config = request.config;
+  std::error_code ec;
+  std::filesystem::create_directories(request.out_dir, ec);
+  if (ec) {
+    throw std::runtime_error("cannot create the output folder '" + request.out_dir +
+                             "': " + ec.message());
+  }
+  config::SaveRunConfig(request.out_dir + "/config.yaml", config);
+  OdometryPipeline pipeline(config.PipelineOptions());
+
+  // Prior map in a local frame near zero; everything written goes back to the world frame.
+  const bool localizing = !request.prior_map.empty();
+  mapping::PriorMap prior;
+  if (localizing) {
+    prior = LoadPriorMap(request.prior_map, config.prior_map, request.guess_world_imu, &pipeline);
+  }
+  const Eigen::Vector3d origin_world = prior.origin_world;
+  const double prior_loaded_after_s = SecondsSince(run_start);
+
+  auto log = logs::OpenLog(request.log, config.LogOptions());
+  if (const logs::LogRecovery* r = log->recovery()) {
+    std::fprintf(stderr, "warning: %s: %s: read record by record up to its last complete message\n",
+                 request.log.c_str(), r->damage.c_str());
+  }
+  std::vector<ScanResult> results;
+  // Dense registered scans, one point per voxel (the crafting input and the c2c metric).
+  // A hash of voxels, not a tree: nothing searches this map during the run, and the tree's
+  // downsampling insert cost as much per scan as the odometry (hylo map, session A).
+  const float dense_voxel_m = static_cast<float>(config.pipeline.output.dense_map_voxel_m);
+  std::optional<registration::UniformSampler> dense_map;
+  if (dense_voxel_m > 0.f) dense_map.emplace(dense_voxel_m);
+  std::vector<estimation::NavState> finalized;
+  std::size_t consumed = 0;
+  auto consume = [&] {
+    for (; consumed < results.size(); ++consumed) {
+      auto& points = results[consumed].registered_points_map;
+      if (dense_map && !points.empty()) dense_map->Add(points);
+      PointCloud().swap(points);
+    }
+    for (estimation::NavState& x : pipeline.TakeFinalizedStates()) finalized.push_back(x);
+  };
+  io::Progress progress(request.label, 0, request.show_progress);
+  logs::LogMessage message;
+  std::size_t scans = 0;
+  // Wall time from the start of the run (prior map loading included) to the first pose, and
+  // the process's CPU time (every thread) by then: what it takes on an idle machine.
+  double first_pose_after_s = std::nan(""), first_pose_cpu_s = std::nan("");
+  while (log->Next(&message)) {
+    if (message.kind == logs::LogMessage::Kind::kImu) {
+      pipeline.AddImu(message.imu);
+      continue;
+    }
+    pipeline.AddScan(std::move(message.scan));
+    pipeline.Process(&results);
+    consume();
+    if (std::isnan(first_pose_after_s) && !results.empty()) {
+      first_pose_after_s = SecondsSince(run_start);
+      first_pose_cpu_s = ProcessCpuSeconds();
+    }
+    progress.Update(++scans);
+    if (pipeline.status() == OdometryPipeline::Status::kFailed) break;
+  }
+  pipeline.Finish(&results);
+  consume();
+  progress.Finish();
+  const logs::LogRecovery* recovery = log->recovery();
+  if (recovery != nullptr) {
+    std::fprintf(stderr, "warning: %s: %s\n", request.log.c_str(), recovery->Summary().c_str());
+  }
+  const std::string imu_faults =
+      ImuFaultsLine(pipeline.counters().queue, log->counters().dropped_non_finite_imu);
+  if (!imu_faults.empty()) {
+    std::fprintf(stderr, "warning: %s: IMU: %s\n", request.log.c_str(), imu_faults.c_str());
+  }
+  if (pipeline.status() == OdometryPipeline::Status::kFailed) {
+    throw std::runtime_error(request.log + ": " + pipeline.message());
+  }
+  if (results.empty()) throw std::runtime_error(request.log + ": no scan was processed");
+
+  RunResult run;
+  run.trajectory = WorldTrajectory(finalized, origin_world);
+  run.live_trajectory = WorldTrajectory(LiveStates(results), origin_world);
+  io::WriteTum(request.out_dir + "/trajectory.tum", run.trajectory);
+  io::WriteTum(request.out_dir + "/trajectory_live.tum", run.live_trajectory);
+  WriteOdometryCsv(request.out_dir + "/odometry.csv", results, origin_world, config.output);
+  WriteTimingCsv(request.out_dir + "/timing.csv", results);
+  // A tiled prior is never whole in memory: its run writes only what it added, as tiles.
+  const bool tiled = !prior.tiled_dir.empty();
+  const bool added = pipeline.map().run_size() > 0 || !pipeline.map().windowed_out().empty();
+  if (!tiled) WriteWorldCloud(request.out_dir + "/map.pcd", pipeline.map().Flatten(), origin_world);
+  if (localizing && !tiled && pipeline.map().run_size() > 0) {
+    WriteWorldCloud(request.out_dir + "/map_added.pcd", pipeline.map().FlattenRun(), origin_world);
+  }
+  std::size_t tiles_added = 0;
+  if (tiled && added) {
+    tiles_added = WriteAddedTiles(request.out_dir + "/map_added", prior, pipeline,
+                                  config.pipeline.map.voxel_size_m);
+  }
+  const PointCloud no_dense_map;
+  const PointCloud& dense = dense_map ? dense_map->points() : no_dense_map;
+  if (dense_map) WriteWorldCloud(request.out_dir + "/map_dense.pcd", dense, origin_world);
+
+  double path_m = 0.0;
+  std::vector<double> cpu_ms;
+  for (const estimation::ScanResult& r : results) {
+    run.ms_per_scan.push_back(r.total_ms);
+    cpu_ms.push_back(r.cpu_ms);
+  }
+  for (std::size_t i = 1; i < finalized.size(); ++i) {
+    path_m += (finalized[i].p_map_imu - finalized[i - 1].p_map_imu).norm();
+  }
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  io::Json& j = run.summary;
+  j["log"] = request.log;
+  j["mode"] = !localizing                                         ? "slam"
+              : config.pipeline.localization.update_after_s < 0.0 ? "localization"
+                                                                  : "hybrid";
+  j["backend"] = config.BackendName();
+  j["imu"] = config.pipeline.imu.enabled;
+  j["scans_processed"] = results.size();
+  j["counters"] = PipelineCountersJson(pipeline.counters());
+  const logs::LogReadCounters& read = log->counters();
+  j["log_read"]["imu_messages"] = read.imu_messages;
+  j["log_read"]["scan_messages"] = read.scan_messages;
+  j["log_read"]["dropped_non_finite_points"] = read.dropped_non_finite_points;
+  j["log_read"]["dropped_non_finite_imu"] = read.dropped_non_finite_imu;
+  j["log_read"]["empty_scans"] = read.empty_scans;
+  j["log_read"]["recovery"] = recovery != nullptr ? LogRecoveryJson(*recovery) : io::Json();
+  j["path_length_m"] = path_m;
+  j["map_points"] = pipeline.map().Size();
+  j["map_points_added"] = pipeline.map().run_size();
+  j["ms_per_scan_median"] = Percentile(run.ms_per_scan, 0.5);
+  j["ms_per_scan_p99"] = Percentile(run.ms_per_scan, 0.99);
+  j["cpu_ms_per_scan_median"] = Percentile(cpu_ms, 0.5);
+  j["cpu_ms_per_scan_p99"] = Percentile(cpu_ms, 0.99);
+  j["peak_memory_mb"] = usage.ru_maxrss / 1024.0;
+  j["elapsed_s"] = progress.ElapsedSeconds();
+  j["prior_map_loaded_after_s"] = prior_loaded_after_s;
+  j["first_pose_after_s"] = first_pose_after_s;
+  j["first_pose_cpu_s"] = first_pose_cpu_s;
+  j["origin_world"] = io::Json::array({origin_world.x(), origin_world.y(), origin_world.z()});
+  j["events"] = EventsJson(pipeline.events(), origin_world);
+  if (localizing) {
+    j["prior_map"] = request.prior_map;
+    j["prior_map_points"] = prior.num_kept;
+    if (tiled) {
+      j["prior_map_tiles"] = TiledPriorJson(pipeline);
+      j["prior_map_tiles"]["added_points_written"] = tiles_added;
+    }
+    const auto reference =
+        PriorSearch(prior, pipeline,
+                    static_cast<std::size_t>(config.prior_map.tile_cache_million_points * 1e6));
+    j["c2c"] = CloudToCloudJson(dense, *reference, request.c2c_max_distance_m);
+  }
+  io::WriteJsonFile(request.out_dir + "/summary.json", j);
+  return run;
+}
+
+}  // namespace hylo::run
