@@ -16,7 +16,7 @@
 #include "hylo/config/run_config.h"
 #include "hylo/estimation/estimator.h"
 #include "hylo/io/json.h"
-#include "hylo/registration/pose_guess.h"
+#include "hylo/localization/pose_guess.h"
 #include "hylo/run/run_log.h"
 
 extern char** environ;
@@ -165,7 +165,7 @@ std::vector<BackendRun> RunBackends(const BackendRunsRequest& request) {
         "a back-end comparison needs a log, a configuration and an "
         "output folder");
   }
-  if (!request.prior_map.empty()) registration::ParsePoseGuess(request.guess);  // fail early
+  if (!request.prior_map.empty()) localization::ParsePoseGuess(request.guess);  // fail early
   std::vector<BackendRun> runs;
   for (const std::string& backend : request.backends) runs.push_back(RunOne(request, backend));
   return runs;
@@ -182,7 +182,7 @@ void RunBackendHere(const BackendRunsRequest& request, const std::string& backen
     }
     run.prior_map = request.prior_map;
     if (!request.prior_map.empty())
-      run.guess_world_imu = registration::ParsePoseGuess(request.guess);
+      run.guess_world_imu = localization::ParsePoseGuess(request.guess);
     run.out_dir = dir;
     run.label = backend;
     run::RunLog(run);

@@ -22,7 +22,7 @@ struct BackendRunsRequest {
   std::string log;           ///< ROS1 bag or scan folder
   std::string config_path;   ///< run configuration (YAML); its backend key is overridden
   std::string prior_map;     ///< prior map (PCD/PLY); empty = SLAM from scratch
-  std::string guess;         ///< T_world_imu guess, registration::ParsePoseGuess text
+  std::string guess;         ///< T_world_imu guess, localization::ParsePoseGuess text
   std::string ground_truth;  ///< TUM trajectory of the IMU; empty = no ATE/RPE
   std::string out_dir;       ///< back-end `b` writes out_dir/b/
   std::vector<std::string> backends = AllBackends();  ///< which, in order

@@ -13,7 +13,7 @@
 
 #include "commands.h"
 #include "hylo/config/run_config.h"
-#include "hylo/registration/pose_guess.h"
+#include "hylo/localization/pose_guess.h"
 #include "hylo/run/run_log.h"
 
 namespace hylo::cli {
@@ -43,7 +43,7 @@ void RunLocalize(const LocalizeArgs& args) {
                                 "pass --guess \"x y z roll pitch yaw\" or set "
                                 "localization.initial_guess in " + args.config);
   }
-  if (!guess.empty()) request.guess_world_imu = registration::ParsePoseGuess(guess);
+  if (!guess.empty()) request.guess_world_imu = localization::ParsePoseGuess(guess);
   request.config.initial_guess = guess;  // saved with the effective config
   request.c2c_max_distance_m = args.c2c_max_distance_m;
   request.out_dir = args.out;

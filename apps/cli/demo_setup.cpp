@@ -10,7 +10,7 @@ namespace hylo::cli {
 
 config::RunConfig ConfigForSimulation(const sim::SimulationOptions& sim) {
   config::RunConfig c;
-  estimation::OdometryPipelineOptions& p = c.pipeline;
+  odometry::OdometryPipelineOptions& p = c.pipeline;
   p.estimator.backend = estimation::Estimator::Backend::kIeskf;
   c.lidar.topic = "/points";
   c.lidar.time_convention = logs::PointTimeConvention::kVelodyne;

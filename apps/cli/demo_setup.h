@@ -37,7 +37,7 @@ Eigen::Isometry3d SessionBGuess(const std::string& truth_b_path, const evaluatio
 double PriorFrameErrorRmse(const std::vector<io::StampedPose>& trajectory_map,
                            const std::string& truth_b_path, const evaluation::AteResult& ate_a);
 
-/// A pose as the 16 numbers of registration::ParsePoseGuess (row-major 4×4), exact to 1e-12.
+/// A pose as the 16 numbers of localization::ParsePoseGuess (row-major 4×4), exact to 1e-12.
 std::string PoseAsGuessText(const Eigen::Isometry3d& T);
 
 }  // namespace hylo::cli

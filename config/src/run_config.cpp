@@ -9,7 +9,7 @@
 
 #include "hylo/common/option_checks.h"
 #include "hylo/io/atomic_file.h"
-#include "hylo/registration/pose_guess.h"
+#include "hylo/localization/pose_guess.h"
 #include "run_config_fields.h"
 #include "yaml_visitors.h"
 
@@ -86,7 +86,7 @@ bool RunConfig::IsValid(std::string* why) const {
   }
   if (!initial_guess.empty()) {
     try {
-      registration::ParsePoseGuess(initial_guess);
+      localization::ParsePoseGuess(initial_guess);
     } catch (const std::invalid_argument& e) {
       return FailOption("localization.initial_guess", "'" + initial_guess + "'", e.what(), why);
     }
@@ -94,8 +94,8 @@ bool RunConfig::IsValid(std::string* why) const {
   return true;
 }
 
-estimation::OdometryPipelineOptions RunConfig::PipelineOptions() const {
-  estimation::OdometryPipelineOptions o = pipeline;
+odometry::OdometryPipelineOptions RunConfig::PipelineOptions() const {
+  odometry::OdometryPipelineOptions o = pipeline;
   const Eigen::Isometry3d T = T_imu_lidar.ToIsometry();
   o.T_imu_lidar = lie::SE3d(lie::SO3d::FromMatrix(T.linear()), T.translation());
   return o;

@@ -20,16 +20,16 @@ struct ImuSection {
 /// `lidar:`: the log's stream and the lidar's clock offset (the pipeline's).
 struct LidarSection {
   LidarStream& stream;
-  estimation::PipelineLidarOptions& options;
+  odometry::PipelineLidarOptions& options;
 };
 /// `localization:`: the start pose given in the file, and the supervisor's settings.
 struct LocalizationSection {
   std::string& initial_guess;
-  estimation::LocalizationOptions& options;
+  localization::LocalizationOptions& options;
 };
 /// `output:`: what the pipeline registers for dense maps, and the frame names.
 struct OutputSection {
-  estimation::PipelineOutputOptions& pipeline;
+  odometry::PipelineOutputOptions& pipeline;
   OutputFrames& frames;
 };
 
@@ -70,7 +70,7 @@ void VisitFields(V& v, TransformConfig& transform) {
 }
 
 template <class V>
-void VisitFields(V& v, estimation::PreprocessOptions& o) {
+void VisitFields(V& v, odometry::PreprocessOptions& o) {
   v("min_range_m", o.min_range_m);
   v("max_range_m", o.max_range_m);
   v("scan_voxel_m", o.scan_voxel_m);
@@ -190,7 +190,7 @@ void VisitFields(V& v, mapping::PriorMapOptions& o) {
 }
 
 template <class V>
-void VisitFields(V& v, registration::IcpInitializerOptions& o) {
+void VisitFields(V& v, localization::IcpInitializerOptions& o) {
   v("plane_fitness_threshold_m2", o.plane_fitness_threshold_m2);
   v("fitness_threshold_m2", o.fitness_threshold_m2);
   v("fitness_max_range_m", o.fitness_max_range_m);
@@ -211,7 +211,7 @@ void VisitFields(V& v, registration::IcpInitializerOptions& o) {
 }
 
 template <class V>
-void VisitFields(V& v, registration::GlobalLocalizerOptions& o) {
+void VisitFields(V& v, localization::GlobalLocalizerOptions& o) {
   v("min_range_m", o.min_range_m);
   v("max_range_m", o.max_range_m);
   v("ground_clearance_m", o.ground_clearance_m);
@@ -232,7 +232,7 @@ void VisitFields(V& v, registration::GlobalLocalizerOptions& o) {
 }
 
 template <class V>
-void VisitFields(V& v, registration::GlobalMapOptions& o) {
+void VisitFields(V& v, localization::GlobalMapOptions& o) {
   v("cell_m", o.cell_m);
   v("z_bin_m", o.z_bin_m);
   v("levels", o.levels);
@@ -240,7 +240,7 @@ void VisitFields(V& v, registration::GlobalMapOptions& o) {
 }
 
 template <class V>
-void VisitFields(V& v, estimation::MovingSearchOptions& o) {
+void VisitFields(V& v, localization::MovingSearchOptions& o) {
   v("enabled", o.enabled);
   v("retry_m", o.retry_m);
   v("max_distance_m", o.max_distance_m);
@@ -249,7 +249,7 @@ void VisitFields(V& v, estimation::MovingSearchOptions& o) {
 
 template <class V>
 void VisitFields(V& v, LocalizationSection& c) {
-  estimation::LocalizationOptions& o = c.options;
+  localization::LocalizationOptions& o = c.options;
   v("initial_guess", c.initial_guess);
   v("init_scans", o.init_scans);
   v("update_after_s", o.update_after_s);
@@ -317,7 +317,7 @@ void VisitFields(V& v, terrain::GroundFilterOptions& o) {
 
 template <class V>
 void VisitFields(V& v, RunConfig& run) {
-  estimation::OdometryPipelineOptions& p = run.pipeline;
+  odometry::OdometryPipelineOptions& p = run.pipeline;
   LidarSection lidar{run.lidar, p.lidar};
   ImuSection imu{run.imu, p.imu};
   LocalizationSection localization{run.initial_guess, p.localization};

@@ -10,7 +10,7 @@ namespace hylo::run {
 
 mapping::PriorMap LoadPriorMap(const std::string& path, const mapping::PriorMapOptions& options,
                                const std::optional<Eigen::Isometry3d>& T_world_imu_guess,
-                               estimation::OdometryPipeline* pipeline) {
+                               odometry::OdometryPipeline* pipeline) {
   if (std::filesystem::is_directory(path)) {
     return LoadTiledPriorMap(path, options, T_world_imu_guess, pipeline);
   }
@@ -23,7 +23,7 @@ mapping::PriorMap LoadPriorMap(const std::string& path, const mapping::PriorMapO
 }
 
 std::unique_ptr<registration::NeighborSearch> PriorSearch(
-    const mapping::PriorMap& prior, const estimation::OdometryPipeline& pipeline,
+    const mapping::PriorMap& prior, const odometry::OdometryPipeline& pipeline,
     std::size_t cache_points) {
   if (!prior.tiled_dir.empty()) {
     return std::make_unique<mapping::TileCache>(pipeline.map().streamer()->shared_source(),

@@ -93,7 +93,7 @@ class FileTileSource final : public mapping::TileSource {
   mapping::TileLookup lookup_;
 };
 
-const FileTileSource& SourceOf(const estimation::OdometryPipeline& pipeline) {
+const FileTileSource& SourceOf(const odometry::OdometryPipeline& pipeline) {
   const mapping::TileStreamer* streamer = pipeline.map().streamer();
   if (streamer == nullptr) throw std::logic_error("the pipeline has no tiled prior");
   return dynamic_cast<const FileTileSource&>(streamer->source());
@@ -103,7 +103,7 @@ const FileTileSource& SourceOf(const estimation::OdometryPipeline& pipeline) {
 
 mapping::PriorMap LoadTiledPriorMap(const std::string& dir, const mapping::PriorMapOptions& options,
                                     const std::optional<Eigen::Isometry3d>& T_world_imu_guess,
-                                    estimation::OdometryPipeline* pipeline) {
+                                    odometry::OdometryPipeline* pipeline) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(dir + ": PriorMapOptions: " + why);
   io::TiledMapIndex index = io::ReadTiledMapIndex(dir);
@@ -113,7 +113,7 @@ mapping::PriorMap LoadTiledPriorMap(const std::string& dir, const mapping::Prior
   const double thin = options.resolution_m > index.voxel_m ? options.resolution_m : 0.0;
   auto source = std::make_shared<FileTileSource>(dir, index, thin);
   mapping::TileStreamerOptions streamer_options;
-  const estimation::OdometryPipelineOptions& p = pipeline->options();
+  const odometry::OdometryPipelineOptions& p = pipeline->options();
   streamer_options.load_radius_m =
       options.tile_load_radius_m > 0.0
           ? options.tile_load_radius_m
@@ -143,7 +143,7 @@ mapping::PriorMap LoadTiledPriorMap(const std::string& dir, const mapping::Prior
   return prior;
 }
 
-io::Json TiledPriorJson(const estimation::OdometryPipeline& pipeline) {
+io::Json TiledPriorJson(const odometry::OdometryPipeline& pipeline) {
   const FileTileSource& source = SourceOf(pipeline);
   const mapping::TileStreamer& streamer = *pipeline.map().streamer();
   const mapping::TileStreamerStats s = streamer.stats();
@@ -165,7 +165,7 @@ io::Json TiledPriorJson(const estimation::OdometryPipeline& pipeline) {
 }
 
 std::size_t WriteAddedTiles(const std::string& out_dir, const mapping::PriorMap& prior,
-                            const estimation::OdometryPipeline& pipeline, double voxel_m) {
+                            const odometry::OdometryPipeline& pipeline, double voxel_m) {
   const FileTileSource& source = SourceOf(pipeline);
   // Earlier sessions' added points (tile by tile, from their files), then this run's: the
   // window's survivors and what it dropped.

@@ -46,14 +46,14 @@ std::vector<io::StampedPose> WorldTrajectory(const std::vector<estimation::NavSt
   return trajectory;
 }
 
-std::vector<estimation::NavState> LiveStates(const std::vector<estimation::ScanResult>& results) {
+std::vector<estimation::NavState> LiveStates(const std::vector<odometry::ScanResult>& results) {
   std::vector<estimation::NavState> states;
   states.reserve(results.size());
-  for (const estimation::ScanResult& r : results) states.push_back(r.state);
+  for (const odometry::ScanResult& r : results) states.push_back(r.state);
   return states;
 }
 
-void WriteOdometryCsv(const std::string& path, const std::vector<estimation::ScanResult>& results,
+void WriteOdometryCsv(const std::string& path, const std::vector<odometry::ScanResult>& results,
                       const Eigen::Vector3d& origin_world, const config::OutputFrames& output) {
   io::AtomicFile file(path);
   std::ofstream& out = CsvStream(&file);
@@ -83,7 +83,7 @@ void WriteOdometryCsv(const std::string& path, const std::vector<estimation::Sca
   file.Commit();
 }
 
-void WriteTimingCsv(const std::string& path, const std::vector<estimation::ScanResult>& results) {
+void WriteTimingCsv(const std::string& path, const std::vector<odometry::ScanResult>& results) {
   io::AtomicFile file(path);
   std::ofstream& out = CsvStream(&file);
   out << "t_s,points,downsampled,matches,iterations,converged,applied,degenerate,"

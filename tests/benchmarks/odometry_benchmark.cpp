@@ -39,7 +39,7 @@ struct AssociationCost {
 };
 
 AssociationCost MeasureAssociation(const hylo::mapping::MapManager& map,
-                                   const hylo::estimation::OdometryPipelineOptions& options) {
+                                   const hylo::odometry::OdometryPipelineOptions& options) {
   using hylo::PointCloud;
   AssociationCost cost;
   const PointCloud points = map.Flatten();
@@ -145,7 +145,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (imu_noise_free) sim_options.imu = sim_options.imu.NoiseFree();
-  estimation::OdometryPipelineOptions options = testing::PipelineOptionsFor(sim_options);
+  odometry::OdometryPipelineOptions options = testing::PipelineOptionsFor(sim_options);
   if (no_deskew) options.preprocess.deskew = false;
   if (accel_bias_sigma > 0) {
     options.initial_uncertainty.accel_bias_sigma_mps2 = accel_bias_sigma;

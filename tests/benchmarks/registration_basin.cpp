@@ -44,7 +44,7 @@ struct Tally {
 };
 
 // Every scan of `dir`, cleaned and downsampled as the pipeline does, with its reference pose.
-void LoadStretch(const std::string& dir, const hylo::estimation::OdometryPipelineOptions& o,
+void LoadStretch(const std::string& dir, const hylo::odometry::OdometryPipelineOptions& o,
                  std::vector<hylo::PointCloud>* scans, std::vector<SE3d>* truth) {
   using namespace hylo;  // NOLINT
   logs::LogReadOptions read;
@@ -53,7 +53,7 @@ void LoadStretch(const std::string& dir, const hylo::estimation::OdometryPipelin
   logs::LogMessage message;
   while (log->Next(&message)) {
     if (message.kind != logs::LogMessage::Kind::kScan) continue;
-    estimation::SanitizeScan(&message.scan, static_cast<float>(o.preprocess.min_range_m),
+    odometry::SanitizeScan(&message.scan, static_cast<float>(o.preprocess.min_range_m),
                              static_cast<float>(o.preprocess.max_range_m), 1'000'000'000);
     scans->push_back(registration::UniformSample(estimation::PointsOf(message.scan),
                                                  static_cast<float>(o.preprocess.scan_voxel_m)));
@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
     }
   }
   if (dirs.empty()) dirs = hylo::testing::HandheldStretchDirs(data_dir);
-  const estimation::OdometryPipelineOptions pipeline =
+  const odometry::OdometryPipelineOptions pipeline =
       config::LoadRunConfig(config_path).PipelineOptions();
   estimation::RobustRegistrationOptions options = pipeline.estimator.robust_registration;
   options.enabled = true;

@@ -38,7 +38,7 @@
 namespace {
 
 using hylo::estimation::Estimator;
-using hylo::estimation::OdometryPipelineOptions;
+using hylo::odometry::OdometryPipelineOptions;
 using hylo::testing::BackendFigures;
 using hylo::testing::ModeFigures;
 using hylo::testing::ScenarioFigures;

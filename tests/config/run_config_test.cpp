@@ -199,7 +199,7 @@ TEST(RunConfig, OdometrySectionsParseValidateAndRoundTrip) {
       "standstill: {enabled: false, max_spread_ratio: 4}\n"
       "T_imu_lidar: {translation_m: [0, 0, 0.2], rotation_rpy_deg: [0, 0, 180]}\n",
       "test.yaml");
-  const estimation::OdometryPipelineOptions& p = config.pipeline;
+  const odometry::OdometryPipelineOptions& p = config.pipeline;
   EXPECT_DOUBLE_EQ(p.preprocess.scan_voxel_m, 0.4);
   EXPECT_EQ(p.preprocess.point_stride, 3);
   EXPECT_EQ(p.estimator.ieskf.max_iterations, 6);
@@ -211,7 +211,7 @@ TEST(RunConfig, OdometrySectionsParseValidateAndRoundTrip) {
   EXPECT_DOUBLE_EQ(back.pipeline.init.duration_s, 2.0);
   EXPECT_FALSE(back.pipeline.estimator.standstill.enabled);
   EXPECT_DOUBLE_EQ(back.pipeline.estimator.standstill.max_spread_ratio, 4.0);
-  const estimation::OdometryPipelineOptions pipeline = back.PipelineOptions();
+  const odometry::OdometryPipelineOptions pipeline = back.PipelineOptions();
   std::string why;
   EXPECT_TRUE(pipeline.IsValid(&why)) << why;
   EXPECT_EQ(pipeline.estimator.ieskf.max_iterations, 6);

@@ -37,7 +37,7 @@ TEST_P(HandheldStretch, TracksWithinThreeCentimetresAndNoStepOffByMoreThanEightC
   run.pipeline.estimator.backend = c.backend;
   const hylo::testing::StretchRun r = hylo::testing::RunStretch(hylo::testing::DataPath(c.stretch),
                                                                 run.PipelineOptions(), c.stride);
-  for (const ScanResult& s : r.results) {
+  for (const odometry::ScanResult& s : r.results) {
     const RobustAlignment& a = s.update.robust;
     std::printf(
         "  %.3f: %.1f ms, %zu matches, %d iterations; robust: deviation %.2f m, %d "

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/odometry/odometry_pipeline.h"
 #include "hylo/evaluation/trajectory_metrics.h"
 
 namespace hylo::testing {
@@ -26,13 +26,13 @@ struct StretchRun {
   std::size_t retried_scans = 0;    ///< scans whose robust alignment tried yaw hypotheses
   std::size_t unchecked_scans = 0;  ///< scans whose best alignment still failed the check
   std::size_t not_applied = 0;      ///< scans whose update was not applied
-  std::vector<estimation::ScanResult> results;
+  std::vector<odometry::ScanResult> results;
 };
 
 /// Runs the scan folder `dir` through a pipeline with `options`, keeping every `stride`-th
 /// scan (2: the same walk sampled at 1 Hz, twice the motion between scans) and at most
 /// `max_scans` of them (0 = all). Throws std::runtime_error when the folder cannot be read.
-StretchRun RunStretch(const std::string& dir, const estimation::OdometryPipelineOptions& options,
+StretchRun RunStretch(const std::string& dir, const odometry::OdometryPipelineOptions& options,
                       int stride = 1, std::size_t max_scans = 0);
 
 /// The q-quantile (0..1) of `values`, nearest rank; 0 when empty.

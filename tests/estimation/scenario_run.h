@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "hylo/estimation/estimator.h"
-#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/odometry/odometry_pipeline.h"
 #include "hylo/io/json.h"
 #include "hylo/sim/scenario.h"
 
@@ -26,7 +26,7 @@ namespace hylo::testing {
 /// sheet's values). "default" changes nothing.
 struct Variant {
   std::string name = "default";
-  std::function<void(estimation::OdometryPipelineOptions*)> adjust;
+  std::function<void(odometry::OdometryPipelineOptions*)> adjust;
   std::vector<estimation::Estimator::Backend> backends;  ///< empty: every back-end of the run
 };
 

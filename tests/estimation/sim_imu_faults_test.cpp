@@ -117,8 +117,8 @@ sim::SimulationOptions SimOptions() {
   return o;
 }
 
-estimation::OdometryPipelineOptions Options(Backend backend) {
-  estimation::OdometryPipelineOptions o = PipelineOptionsFor(SimOptions());
+odometry::OdometryPipelineOptions Options(Backend backend) {
+  odometry::OdometryPipelineOptions o = PipelineOptionsFor(SimOptions());
   o.estimator.backend = backend;
   o.estimator.sliding_window.max_solver_time_s = 10.0;  // no wall-time cut (loaded machines)
   return o;
@@ -139,7 +139,7 @@ const SimRun& CleanRun(Backend backend) {
 class SimImuFaults : public ::testing::TestWithParam<Backend> {};
 
 TEST_P(SimImuFaults, FaultsAreCountedAndTheEstimateCarriesOn) {
-  const estimation::OdometryPipelineOptions options = Options(GetParam());
+  const odometry::OdometryPipelineOptions options = Options(GetParam());
   const sim::Site site = sim::BuildSite(SimOptions().seed, SimOptions().terrain);
   const sim::SessionSimulator simulator(SimOptions(), site, sim::SessionId::kA);
   PipelineSink pipeline(options);
@@ -151,7 +151,7 @@ TEST_P(SimImuFaults, FaultsAreCountedAndTheEstimateCarriesOn) {
   ASSERT_FALSE(run.failed) << run.message;
 
   const Injected& in = faults.injected();
-  const estimation::QueueCounters& q = run.counters.queue;
+  const odometry::QueueCounters& q = run.counters.queue;
   EXPECT_EQ(q.imu_non_finite, in.non_finite);
   EXPECT_EQ(q.imu_saturated, in.saturated);
   EXPECT_EQ(q.imu_duplicates, in.duplicates);
@@ -186,7 +186,7 @@ TEST_P(SimImuFaults, FaultsAreCountedAndTheEstimateCarriesOn) {
 // README "IMU dropouts and bad samples").
 TEST(SimImuOutage, AnImuThatStopsForSecondsLeavesTheLidarInCharge) {
   const Backend backend = Backend::kIeskf;
-  const estimation::OdometryPipelineOptions options = Options(backend);
+  const odometry::OdometryPipelineOptions options = Options(backend);
   const sim::Site site = sim::BuildSite(SimOptions().seed, SimOptions().terrain);
   const sim::SessionSimulator simulator(SimOptions(), site, sim::SessionId::kA);
   PipelineSink pipeline(options);
@@ -195,7 +195,7 @@ TEST(SimImuOutage, AnImuThatStopsForSecondsLeavesTheLidarInCharge) {
   const SimRun run = pipeline.Finish();
   const SimRun& clean = CleanRun(backend);
   ASSERT_FALSE(run.failed) << run.message;
-  const estimation::QueueCounters& q = run.counters.queue;
+  const odometry::QueueCounters& q = run.counters.queue;
   std::printf(
       "[%s] 3 s IMU outage: %zu scans past the IMU; clean ATE %.4f m, with the outage "
       "%.4f m (max %.4f)\n",

@@ -39,7 +39,7 @@ const BackendRun& RunSessionA(Backend backend) {
   sim_options.duration_a_s = 120.0;
   sim_options.seed = 5;
   sim_options.lidar.model = sim::LidarModel::kVlp16;
-  estimation::OdometryPipelineOptions options = PipelineOptionsFor(sim_options);
+  odometry::OdometryPipelineOptions options = PipelineOptionsFor(sim_options);
   options.estimator.backend = backend;
   // No wall-time cut: a budget would make the figures depend on the load of the test machine
   // (the iteration limit still bounds the work; the CPU time per scan is what is reported).

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "fuzz_support.h"
-#include "hylo/registration/pose_guess.h"
+#include "hylo/localization/pose_guess.h"
 
 namespace {
 
@@ -28,12 +28,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
   try {
     if (data[0] % 2 == 0) {
-      CheckPose(hylo::registration::ParsePoseGuess(
+      CheckPose(hylo::localization::ParsePoseGuess(
           std::string(reinterpret_cast<const char*>(data + 1), size - 1)));
     } else {
       std::vector<double> values((size - 1) / sizeof(double));
       if (!values.empty()) std::memcpy(values.data(), data + 1, values.size() * sizeof(double));
-      CheckPose(hylo::registration::PoseGuessFromNumbers(values));
+      CheckPose(hylo::localization::PoseGuessFromNumbers(values));
     }
   } catch (const std::invalid_argument& e) {
     hylo::fuzz::RequireClearError(e, "pose guess");

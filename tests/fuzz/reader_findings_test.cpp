@@ -19,7 +19,7 @@
 #include "hylo/logs/ros_bridge.h"
 #include "hylo/logs/scan_folder.h"
 #include "hylo/io/trajectory_io.h"
-#include "hylo/registration/pose_guess.h"
+#include "hylo/localization/pose_guess.h"
 #include "test_data.h"
 
 namespace hylo {
@@ -53,7 +53,7 @@ void ExpectOneLineNaming(const std::string& error, const std::string& name,
 
 TEST(ReaderFindings, PoseGuessErrorStaysOnOneLineWhateverTheTextsLineBreaks) {
   const std::string error = ErrorOf<std::invalid_argument>(
-      [] { registration::ParsePoseGuess("0 -1 0 1\nq 0 0 2\n0 0 1 3\n0 0 0 1"); });
+      [] { localization::ParsePoseGuess("0 -1 0 1\nq 0 0 2\n0 0 1 3\n0 0 0 1"); });
   ExpectOneLineNaming(error, "pose guess", "'q' is not a finite number");
 }
 

@@ -7,7 +7,7 @@
 namespace hylo::rosnode {
 namespace {
 
-using Status = estimation::OdometryPipeline::Status;
+using Status = odometry::OdometryPipeline::Status;
 
 TEST(Health, StatesFollowThePipelineAndPendingRequests) {
   EXPECT_EQ(ToString(StateOf(Status::kInitializing, false)), "initialising");

@@ -139,7 +139,7 @@ TEST_F(RosNodeIntegration, SlamOdometryMatchesTruthAndTfTreeIsComplete) {
   EXPECT_NE(c.health.back().find("\"mode\":\"slam\""), std::string::npos);
 }
 
-/// 16 numbers, row-major, as registration::ParsePoseGuess reads them.
+/// 16 numbers, row-major, as localization::ParsePoseGuess reads them.
 std::string MatrixText(const Eigen::Isometry3d& T) {
   std::ostringstream os;
   os.precision(12);

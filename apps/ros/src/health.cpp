@@ -17,8 +17,8 @@ std::string ToString(HealthState state) {
   return "unknown";
 }
 
-HealthState StateOf(estimation::OdometryPipeline::Status status, bool relocalization_pending) {
-  using Status = estimation::OdometryPipeline::Status;
+HealthState StateOf(odometry::OdometryPipeline::Status status, bool relocalization_pending) {
+  using Status = odometry::OdometryPipeline::Status;
   switch (status) {
     case Status::kInitializing: return HealthState::kInitialising;
     case Status::kFailed: return HealthState::kFailed;

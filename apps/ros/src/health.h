@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
-#include "hylo/estimation/localization.h"
-#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/localization/localization.h"
+#include "hylo/odometry/odometry_pipeline.h"
 #include "input_queue.h"
 
 namespace hylo::rosnode {
@@ -24,16 +24,16 @@ enum class HealthState {
 std::string ToString(HealthState state);
 
 /// The state from the pipeline's status and whether a user relocalization is pending.
-HealthState StateOf(estimation::OdometryPipeline::Status status, bool relocalization_pending);
+HealthState StateOf(odometry::OdometryPipeline::Status status, bool relocalization_pending);
 
 struct HealthReport {
   HealthState state = HealthState::kInitialising;
   int64_t t_ns = 0;                    ///< stamp of the last processed scan (0: none yet), ns
   bool localizing = false;             ///< a prior map is used (else SLAM)
   std::string backend;                 ///< ieskf | sliding_window
-  estimation::ScanHealth scan;         ///< fit of the last scan (fitness, inliers, matches)
+  localization::ScanHealth scan;         ///< fit of the last scan (fitness, inliers, matches)
   bool update_applied = false;         ///< the last scan's update was applied
-  estimation::PipelineCounters pipeline;  ///< processed, skipped, the pipeline's queue
+  odometry::PipelineCounters pipeline;  ///< processed, skipped, the pipeline's queue
   InputCounters input;                 ///< the node's bounded queue: late / dropped messages
   std::size_t map_points = 0;          ///< points in the map after the last scan
   std::string last_event;              ///< the last LocalizationEvent, "kind: message"

@@ -62,7 +62,7 @@ void NodeOutputs::SetOrigin(const Eigen::Vector3d& origin_world) {
   static_tf_.sendTransform(Stamped(T_map_local, ros::Time::now(), frames_.map, cloud_frame_));
 }
 
-void NodeOutputs::PublishScan(const estimation::ScanResult& result) {
+void NodeOutputs::PublishScan(const odometry::ScanResult& result) {
   const FramePoses poses = ComputeFramePoses(lie::ToIsometry(result.state.T_map_imu()),
                                              lie::ToIsometry(result.T_map_odom), origin_world_);
   const ros::Time stamp = logs::ros_bridge::ToRosTime(result.t_ns);

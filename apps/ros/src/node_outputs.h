@@ -35,7 +35,7 @@ class NodeOutputs {
   /// A non-zero origin publishes the static map → <map>_local and moves the clouds there.
   void SetOrigin(const Eigen::Vector3d& origin_world);
   /// Odometry, TF map → odom → base, path and (if not empty) the registered scan.
-  void PublishScan(const estimation::ScanResult& result);
+  void PublishScan(const odometry::ScanResult& result);
   /// True when the map should be republished at scan time t_ns: never yet, or map_period_s
   /// passed and the map changed size (checked before the caller flattens the map).
   bool MapDue(int64_t t_ns, std::size_t map_size) const;

@@ -105,7 +105,7 @@ nav_msgs::OccupancyGrid ToGridMsg(const OccupancyGridData& grid, const std::stri
   return msg;
 }
 
-nav_msgs::Odometry ToOdometryMsg(const estimation::ScanResult& result, const FramePoses& poses,
+nav_msgs::Odometry ToOdometryMsg(const odometry::ScanResult& result, const FramePoses& poses,
                                  const FrameNames& frames) {
   nav_msgs::Odometry msg;
   msg.header.stamp = ToRosTime(result.t_ns);

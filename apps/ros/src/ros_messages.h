@@ -17,7 +17,7 @@
 
 #include "costmap_grid.h"
 #include "frames.h"
-#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/odometry/odometry_pipeline.h"
 #include "hylo/logs/pointcloud2.h"
 
 namespace hylo::rosnode {
@@ -49,7 +49,7 @@ nav_msgs::OccupancyGrid ToGridMsg(const OccupancyGridData& grid, const std::stri
 
 /// Pose (map frame → base, with its covariance about the map axes) and body twist (base
 /// frame) of one scan result, stamped at the scan end.
-nav_msgs::Odometry ToOdometryMsg(const estimation::ScanResult& result, const FramePoses& poses,
+nav_msgs::Odometry ToOdometryMsg(const odometry::ScanResult& result, const FramePoses& poses,
                                  const FrameNames& frames);
 
 }  // namespace hylo::rosnode

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/odometry/odometry_pipeline.h"
 #include "hylo/logs/log_reader.h"
 #include "hylo/mapping/prior_map.h"
 #include "hylo/terrain/ground_filter.h"
@@ -67,7 +67,7 @@ struct RunConfig {
 
   /// Every library setting; its members are the YAML sections (see OdometryPipelineOptions).
   /// Its extrinsic is taken from T_imu_lidar below (PipelineOptions).
-  estimation::OdometryPipelineOptions pipeline;
+  odometry::OdometryPipelineOptions pipeline;
   LidarStream lidar;
   ImuStream imu;
   TransformConfig T_imu_lidar;         ///< maps points from the lidar frame to the IMU frame
@@ -85,7 +85,7 @@ struct RunConfig {
   /// The streams to read from a log, as logs::OpenLog takes them.
   logs::LogReadOptions LogOptions() const;
   /// The odometry pipeline's settings: `pipeline` with the extrinsic of T_imu_lidar.
-  estimation::OdometryPipelineOptions PipelineOptions() const;
+  odometry::OdometryPipelineOptions PipelineOptions() const;
   /// "ieskf" / "sliding_window".
   std::string BackendName() const;
 };

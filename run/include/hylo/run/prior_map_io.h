@@ -11,7 +11,7 @@
 #include <string>
 
 #include "hylo/common/point_types.h"
-#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/odometry/odometry_pipeline.h"
 #include "hylo/io/json.h"
 #include "hylo/mapping/prior_map.h"
 
@@ -24,7 +24,7 @@ namespace hylo::run {
 /// when it cannot be read or holds no point. A tiled map directory goes to LoadTiledPriorMap.
 mapping::PriorMap LoadPriorMap(const std::string& path, const mapping::PriorMapOptions& options,
                                const std::optional<Eigen::Isometry3d>& T_world_imu_guess,
-                               estimation::OdometryPipeline* pipeline);
+                               odometry::OdometryPipeline* pipeline);
 
 /// The same for a tiled map directory: checks the index against every tile's header (a
 /// missing tile or a count that disagrees fails here, naming the file), hands the pipeline a
@@ -35,23 +35,23 @@ mapping::PriorMap LoadPriorMap(const std::string& path, const mapping::PriorMapO
 /// at a voxel finer than options.resolution_m are thinned again as they load.
 mapping::PriorMap LoadTiledPriorMap(const std::string& dir, const mapping::PriorMapOptions& options,
                                     const std::optional<Eigen::Isometry3d>& T_world_imu_guess,
-                                    estimation::OdometryPipeline* pipeline);
+                                    odometry::OdometryPipeline* pipeline);
 
 /// What a tiled prior's loader did (tiles, loads, unloads, most points held, its CPU time),
 /// for a run's summary. `pipeline` must localize in a tiled prior.
-io::Json TiledPriorJson(const estimation::OdometryPipeline& pipeline);
+io::Json TiledPriorJson(const odometry::OdometryPipeline& pipeline);
 
 /// Hybrid mode over a tiled prior: the points the run added (including those its window
 /// dropped) and those of the prior's own map_added/ layer, written to `out_dir` as a tiled map
 /// in the prior's grid and origin, thinned at `voxel_m` (the run's map voxel). Moving it to
 /// <map>/map_added makes the next session start from the grown map. Returns the points written.
 std::size_t WriteAddedTiles(const std::string& out_dir, const mapping::PriorMap& prior,
-                            const estimation::OdometryPipeline& pipeline, double voxel_m);
+                            const odometry::OdometryPipeline& pipeline, double voxel_m);
 
 /// The prior as one neighbour search, for a run's final metrics: one tree over the whole map,
 /// or, for a tiled prior, its tiles read on demand (at most `cache_points` held).
 std::unique_ptr<registration::NeighborSearch> PriorSearch(
-    const mapping::PriorMap& prior, const estimation::OdometryPipeline& pipeline,
+    const mapping::PriorMap& prior, const odometry::OdometryPipeline& pipeline,
     std::size_t cache_points);
 
 /// Writes `points_map` (map frame, local to `origin_world`) to `path` in world coordinates

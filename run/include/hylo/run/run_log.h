@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "hylo/config/run_config.h"
-#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/odometry/odometry_pipeline.h"
 #include "hylo/io/json.h"
 #include "hylo/logs/log_reader.h"
 #include "hylo/io/trajectory_io.h"
@@ -52,7 +52,7 @@ struct RunResult {
 
 /// The pipeline's counters (scans processed, skipped, not applied, queue drops and gaps) as
 /// the `counters` object of summary.json; the ROS node's health topic carries the same.
-io::Json PipelineCountersJson(const estimation::PipelineCounters& counters);
+io::Json PipelineCountersJson(const odometry::PipelineCounters& counters);
 
 /// A damaged log's recovery as the `log.recovery` object of summary.json (and `hylo info`).
 io::Json LogRecoveryJson(const logs::LogRecovery& recovery);
@@ -60,7 +60,7 @@ io::Json LogRecoveryJson(const logs::LogRecovery& recovery);
 /// The IMU faults the queue dropped or noticed, and `unread_non_finite` samples the log reader
 /// already dropped for NaN/inf values, as one line for the user ("" when there were none):
 /// gaps (count, longest, total), duplicated and backward stamps, NaN/inf and clipped samples.
-std::string ImuFaultsLine(const estimation::QueueCounters& queue, std::size_t unread_non_finite);
+std::string ImuFaultsLine(const odometry::QueueCounters& queue, std::size_t unread_non_finite);
 
 /// Runs the log. Throws std::runtime_error naming the file and reason for unreadable input,
 /// a failed initialisation (vehicle moving, no accepted ICP start) or a log with no scan.

@@ -1,0 +1,119 @@
+// The supervisor's side of searching while moving (moving_search.h): when a search begins,
+// each attempt of the global localizer on the accumulated cloud, and the end of a search.
+#include <optional>
+#include <sstream>
+#include <utility>
+
+#include "hylo/localization/supervisor.h"
+#include "hylo/lie/isometry.h"
+
+namespace hylo::localization {
+
+bool LocalizationSupervisor::RequestGlobalLocalization(std::string* why) {
+  if (!global_->available()) {
+    *why = "no global map: " + global_->why_unavailable();
+    return false;
+  }
+  if (!started_ && !searching()) {
+    guess_.reset();  // the start searches the whole map
+    return true;
+  }
+  if (!searching()) global_request_ = true;
+  return true;
+}
+
+void LocalizationSupervisor::BeginSearch(const estimation::NavState& x, const PointCloud& points_imu,
+                                         bool is_start, const std::string& reason) {
+  search_ = std::make_unique<MovingSearch>(options_.search, search_map_, search_planes_,
+                                           options_.global.max_range_m, options_.init_scans);
+  search_->Begin(points_imu, lie::ToIsometry(x.T_map_imu()));
+  search_is_start_ = is_start;
+  lost_ = false;
+  bad_scans_in_row_ = 0;
+  AddEvent(LocalizationEvent::Kind::kSearching, x.t_ns,
+           reason + "; searching while the vehicle moves (no pose until one is accepted)",
+           lie::ToIsometry(x.T_map_imu()));
+}
+
+LocalizationSupervisor::SearchStep LocalizationSupervisor::Search(
+    const PointCloud& sweep_imu, const PointCloud& map_points_search,
+    const registration::NeighborSearch& map, estimation::Estimator* estimator, std::string* why) {
+  const estimation::NavState x = estimator->state();
+  const Eigen::Isometry3d T_search_imu = lie::ToIsometry(x.T_map_imu());
+  // Begun on request, a standing vehicle tries once it has as many scans as a start.
+  const int first_attempt_scans = search_is_start_ ? 0 : options_.init_scans;
+  const bool due = search_->Add(sweep_imu, map_points_search, T_search_imu, first_attempt_scans);
+  std::optional<Eigen::Isometry3d> guess;
+  guess.swap(relocalize_request_);
+  if (!due && !guess) return SearchStep::kSearching;
+  ++scans_initializer_;
+  const PointCloud cloud_imu = search_->TakeAttemptCloud(T_search_imu);
+  if (guess) {
+    // A user's pose (e.g. ROS /initialpose) is judged as given, on the longer cloud.
+    const IcpInitializerResult icp =
+        icp_initializer_.Initialize(cloud_imu, map, *guess);
+    if (icp.accepted) {
+      EndSearch(icp.T_map_imu, estimator, "requested pose accepted: " + icp.message, icp);
+      return SearchStep::kLocalized;
+    }
+    AddEvent(LocalizationEvent::Kind::kSearching, x.t_ns, "requested pose " + icp.message,
+             T_search_imu, &icp);
+    if (!due) return SearchStep::kSearching;
+  }
+  const GlobalLocalizationResult r =
+      global_->Localize(cloud_imu, LevellingRotation(T_search_imu.linear()), map);
+  std::ostringstream os;
+  os << "global localization " << r.message << " (attempt " << search_->attempts() << " after "
+     << search_->distance_m() << " m and " << search_->scans() << " scans, " << cloud_imu.size()
+     << " points, " << r.elapsed_s << " s CPU)";
+  if (r.status == GlobalStatus::kAccepted) {
+    // The accumulated cloud found the place; the last scans alone, free of the drift of the
+    // search's odometry farther back, place the vehicle now (the whole cloud is kept when
+    // they fail: a moving vehicle's few scans can be too sparse to pass on their own).
+    const IcpInitializerResult recent =
+        icp_initializer_.Initialize(search_->RecentInImu(T_search_imu), map, r.T_map_imu);
+    if (recent.accepted) {
+      os << "; last " << options_.init_scans << " scans: " << recent.message;
+      EndSearch(recent.T_map_imu, estimator, os.str(), recent);
+    } else {
+      EndSearch(r.T_map_imu, estimator, os.str(), r.refinement);
+    }
+    return SearchStep::kLocalized;
+  }
+  if (search_->GaveUp()) {
+    *why = "no pose after searching over " + std::to_string(search_->distance_m()) +
+           " m (localization.search.max_distance_m): " + os.str();
+    AddEvent(search_is_start_ ? LocalizationEvent::Kind::kInitializationFailed
+                              : LocalizationEvent::Kind::kRelocalizationFailed,
+             x.t_ns, *why, T_search_imu);
+    search_.reset();
+    return SearchStep::kGaveUp;
+  }
+  AddEvent(LocalizationEvent::Kind::kSearching, x.t_ns, os.str(), T_search_imu);
+  return SearchStep::kSearching;
+}
+
+void LocalizationSupervisor::EndSearch(const Eigen::Isometry3d& T_map_imu, estimation::Estimator* estimator,
+                                       const std::string& verdict,
+                                       const IcpInitializerResult& icp) {
+  estimation::NavState x = estimator->state();
+  // The search frame placed in the map: every search-frame quantity moves with it.
+  const lie::SE3d T_map_search = lie::FromIsometry(T_map_imu) * x.T_map_imu().Inverse();
+  x.R_map_imu = T_map_search.so3() * x.R_map_imu;
+  x.p_map_imu = T_map_search * x.p_map_imu;
+  x.v_map_imu = T_map_search.so3() * x.v_map_imu;
+  x.gravity_map = T_map_search.so3() * x.gravity_map;
+  estimator->Initialize(x, uncertainty_.LocalizedCovariance());
+  // REP-105: the search frame was the odom frame's stand-in, so odom -> imu stays continuous.
+  T_map_odom_ = T_map_search * T_map_odom_;
+  const bool is_start = search_is_start_;
+  search_.reset();
+  if (is_start) {
+    started_ = true;
+    start_t_ns_ = x.t_ns;
+  }
+  AddEvent(is_start ? LocalizationEvent::Kind::kInitialized : LocalizationEvent::Kind::kRelocalized,
+           x.t_ns, verdict, T_map_imu, &icp);
+}
+
+}  // namespace hylo::localization

@@ -1,0 +1,165 @@
+#pragma once
+// The shared lidar(-inertial) odometry loop, the same for every back-end (FAST-LIO2 Fig. 2):
+//   measurement queue → static IMU initialisation → scan preprocessing (clean-up, sampling,
+//   undistortion) → Estimator::Update against the map's planes → add the registered scan to
+//   the map.
+// Localization in a prior map adds, for every back-end alike, a LocalizationSupervisor: the ICP
+// start, health checks from the update's residuals, relocalization and hybrid map updates.
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hylo/estimation/estimator.h"
+#include "hylo/estimation/estimator_options.h"
+#include "hylo/estimation/imu_initializer.h"
+#include "hylo/estimation/imu_options.h"
+#include "hylo/estimation/initial_uncertainty.h"
+#include "hylo/localization/global_search.h"
+#include "hylo/localization/localization.h"
+#include "hylo/localization/supervisor.h"
+#include "hylo/odometry/measurement_queue.h"
+#include "hylo/odometry/scan_preprocessor.h"
+#include "hylo/odometry/scan_result.h"
+#include "hylo/odometry/twist.h"
+#include "hylo/mapping/map_manager.h"
+#include "hylo/registration/plane_matcher.h"
+
+namespace hylo::odometry {
+
+/// What the pipeline produces beyond the poses (section `output:` of a run configuration).
+struct PipelineOutputOptions {
+  /// > 0: each result carries the whole scan, uniformly sampled at this voxel (m), deskewed and
+  /// registered in the map frame, for dense map outputs; 0 = off. Finer than 0.01 m keeps
+  /// every return and exhausts memory on long runs.
+  double dense_map_voxel_m = 0.0;
+  bool IsValid(std::string* why) const;
+};
+
+/// The lidar's clock (section `lidar:` of a run configuration, beside the log's topic).
+struct PipelineLidarOptions {
+  /// Constant offset of the IMU's clock from the lidar's: t_imu = t_lidar + time_offset_s, s
+  /// (FAST-LIO's `time_offset_lidar_to_imu`, the same sign). Scans are moved onto the IMU
+  /// clock as they enter the pipeline, so every output is stamped in the IMU clock. At most
+  /// 1 s: a larger constant is not a latency but another time base (e.g. time since boot
+  /// against Unix time), which a constant cannot correct and which would pair every scan with
+  /// IMU data from elsewhere in the log.
+  double time_offset_s = 0.0;
+  bool IsValid(std::string* why) const;
+  int64_t TimeOffsetNs() const;
+};
+
+/// Every setting of the pipeline. Member names are the run configuration's sections, so a
+/// message from IsValid names the key a user wrote (the estimator's sections sit at the top
+/// level of the configuration: `backend`, `lidar_update`, `no_imu`, `ieskf`, `sliding_window`).
+struct OdometryPipelineOptions {
+  estimation::ImuOptions imu;                            ///< the inertial sensor, or none
+  PipelineLidarOptions lidar;                ///< the lidar's clock offset
+  estimation::EstimatorOptions estimator;                ///< back-end and its settings
+  estimation::InitialUncertainty initial_uncertainty;    ///< how a back-end starts
+  estimation::ImuInitializerOptions init;                ///< static IMU initialisation
+  PreprocessOptions preprocess;              ///< scan clean-up, sampling, deskewing
+  registration::PlaneMatcherOptions planes;  ///< point-to-plane association
+  mapping::MapManagerOptions map;            ///< the map registered against
+  localization::LocalizationOptions localization;          ///< used once SetInitialGuess is called
+  PipelineOutputOptions output;              ///< dense registered scans
+  lie::SE3d T_imu_lidar;                     ///< extrinsic (the filter may refine it online)
+  bool update_map = true;                    ///< SLAM (no prior map): add registered scans to
+                                             ///< the map. With a prior, update_after_s rules
+  bool IsValid(std::string* why) const;
+};
+
+class OdometryPipeline {
+ public:
+  /// kInitializing: IMU at rest / ICP initializer / searching while moving (no pose in the
+  /// map yet: no results); kRunning; kLost: running, but health was bad for lost_after_scans
+  /// scans and a relocalization is pending; kFailed: see message().
+  enum class Status { kInitializing, kRunning, kLost, kFailed };
+
+  /// Throws hylo::InternalError naming the field when `options` is not valid.
+  explicit OdometryPipeline(const OdometryPipelineOptions& options);
+  ~OdometryPipeline();
+
+  void AddImu(const ImuSample& sample) { queue_.AddImu(sample); }
+  /// The scan's stamps are moved onto the IMU clock here (lidar.time_offset_s).
+  void AddScan(LidarScan scan);
+
+  /// Localization: the prior map (map frame, downsampled by the caller, e.g. BuildPriorMap;
+  /// its global-localization raster is built here) and the guess of T_map_imu at the start
+  /// (with an IMU only its yaw and position are used: roll and pitch come from gravity), or
+  /// std::nullopt to search the whole map. Both before the first scan; then odometry starts
+  /// only from a pose the ICP initializer accepted, or the pipeline fails with the reason.
+  void SetPriorMap(const PointCloud& points_map);
+  /// Localization in a tiled prior instead (mapping/tiles.h; the map frame is the tiles' local
+  /// frame): `streamer` keeps the tiles around the vehicle, each scan posts the position to it
+  /// and swaps in the tiles it finished (a failed load fails the pipeline with its reason);
+  /// the start and a lost vehicle read other tiles on demand through a cache of at most
+  /// `cache_max_points`. The global localizer's raster is built from `overview_points` (the
+  /// map thinned for it; empty: no global search). Off the tiles the supervisor runs odometry
+  /// only (events left_map / reentered_map). Before the first scan, as SetPriorMap.
+  void SetTiledPriorMap(std::shared_ptr<mapping::TileStreamer> streamer,
+                        const PointCloud& overview_points, std::size_t cache_max_points);
+  void SetInitialGuess(const std::optional<Eigen::Isometry3d>& T_map_imu_guess);
+  /// Relocalize around `T_map_imu_guess` with the next scan (e.g. ROS /initialpose). Before
+  /// the start it replaces the initial guess. Needs a prior map.
+  void RequestRelocalization(const Eigen::Isometry3d& T_map_imu_guess);
+  /// Forget the pose and search the whole prior map (LocalizationSupervisor::
+  /// RequestGlobalLocalization). False with *why without a prior map or a global map.
+  bool RequestGlobalLocalization(std::string* why);
+  /// True when SetInitialGuess was called (localization in a prior map).
+  bool localizing() const { return supervisor_ != nullptr; }
+  /// Start, loss, relocalization and hybrid events in time order.
+  const std::vector<localization::LocalizationEvent>& events() const;
+
+  /// Processes every scan that is ready and appends one result per processed scan. `flush`
+  /// at the end of a log releases scans whose IMU ends early.
+  void Process(std::vector<ScanResult>* results, bool flush = false);
+  /// The log ended: processes what is left (as Process with flush) and finalizes every state.
+  void Finish(std::vector<ScanResult>* results);
+  /// The states the back-end finalized since the last call, oldest first, one per updated
+  /// scan (see Estimator: with the smoother they lag the live results by its window).
+  std::vector<estimation::NavState> TakeFinalizedStates();
+
+  Status status() const;
+  /// Why the pipeline failed (kFailed), e.g. the vehicle moved during initialisation.
+  const std::string& message() const { return message_; }
+  PipelineCounters counters() const;
+  const mapping::MapManager& map() const { return map_; }
+  mapping::MapManager& map() { return map_; }
+  const estimation::Estimator& estimator() const { return *estimator_; }
+  const OdometryPipelineOptions& options() const { return options_; }
+
+ private:
+  // odometry_pipeline_start.cpp: true when the group's scan was consumed by the start.
+  bool Start(const MeasurementGroup& group);
+  bool StartWithoutImu(const MeasurementGroup& group);
+  std::size_t FeedImuInitializer(const MeasurementGroup& group);
+  void StartSlam(const estimation::NavState& x, const std::vector<ImuSample>& imu_after);
+  void AddStaticScan(const MeasurementGroup& group);
+  void StartLocalization(const MeasurementGroup& group);
+  void Fail(const std::string& why);
+  // A tiled prior before each scan: the loader's news, its failures, on or off the tiles.
+  bool FollowTiledPrior();
+  // odometry_pipeline.cpp
+  bool ProcessScan(MeasurementGroup* group, ScanResult* result);
+  void UpdateMap(const estimation::DeskewedScan& scan, ScanResult* result);
+
+  OdometryPipelineOptions options_;
+  MeasurementQueue queue_;
+  estimation::ImuInitializer imu_initializer_;
+  ScanPreprocessor preprocessor_;
+  std::unique_ptr<estimation::Estimator> estimator_;
+  mapping::MapManager map_;
+  registration::PlaneMatcher matcher_;
+  std::unique_ptr<localization::LocalizationSupervisor> supervisor_;   // null in SLAM
+  std::unique_ptr<localization::GlobalSearch> global_search_;  // with a prior map
+  TwistEstimator twist_;
+  Status status_ = Status::kInitializing;  // kLost is the supervisor's
+  std::string message_;
+  PipelineCounters counters_;
+};
+
+}  // namespace hylo::odometry

@@ -1,0 +1,270 @@
+// The odometry loop: options, the per-scan flow and the outputs (the start is in
+// odometry_pipeline_start.cpp).
+#include "hylo/odometry/odometry_pipeline.h"
+
+#include <time.h>
+
+#include <chrono>
+#include <cmath>
+#include <utility>
+
+#include "hylo/common/check.h"
+#include "hylo/common/option_checks.h"
+#include "hylo/common/time.h"
+
+namespace hylo::odometry {
+namespace {
+
+MeasurementQueueOptions QueueOptions(const estimation::ImuOptions& imu) {
+  MeasurementQueueOptions q;
+  q.use_imu = imu.enabled;
+  q.imu_gap_ns = imu.GapNs();
+  q.accel_range_mps2 = imu.accel_range_mps2;
+  q.gyro_range_radps = imu.gyro_range_radps;
+  return q;
+}
+
+double CpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+double MsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+PointCloud Transformed(const lie::SE3d& T_to_from, const PointCloud& points_from) {
+  PointCloud points_to;
+  points_to.reserve(points_from.size());
+  for (const Eigen::Vector3f& p : points_from) {
+    points_to.push_back((T_to_from * p.cast<double>()).cast<float>());
+  }
+  return points_to;
+}
+
+}  // namespace
+
+bool PipelineOutputOptions::IsValid(std::string* why) const {
+  if (!CheckNonNegative("dense_map_voxel_m", dense_map_voxel_m, why)) return false;
+  if (dense_map_voxel_m > 0.0 && dense_map_voxel_m < 0.01) {
+    return FailOption("dense_map_voxel_m", dense_map_voxel_m,
+                      "must be 0 (off) or >= 0.01 m (finer voxels keep every return and "
+                      "exhaust memory)",
+                      why);
+  }
+  return true;
+}
+
+bool PipelineLidarOptions::IsValid(std::string* why) const {
+  if (std::isfinite(time_offset_s) && std::abs(time_offset_s) <= 1.0) return true;
+  return FailOption("time_offset_s", time_offset_s,
+                    "must be finite and within [-1, 1] s: a larger offset is another time base "
+                    "(fix the driver's clock), not a latency a constant can correct",
+                    why);
+}
+
+int64_t PipelineLidarOptions::TimeOffsetNs() const { return SecondsToNanos(time_offset_s); }
+
+bool OdometryPipelineOptions::IsValid(std::string* why) const {
+  return CheckSection(imu, "imu", why) && CheckSection(lidar, "lidar", why) &&
+         estimator.IsValid(why) && CheckSection(initial_uncertainty, "initial_uncertainty", why) &&
+         CheckSection(init, "init", why) && CheckSection(preprocess, "preprocess", why) &&
+         CheckSection(planes, "planes", why) && CheckSection(map, "map", why) &&
+         CheckSection(localization, "localization", why) && CheckSection(output, "output", why);
+}
+
+OdometryPipeline::OdometryPipeline(const OdometryPipelineOptions& options)
+    : options_(options),
+      queue_(QueueOptions(options.imu)),
+      imu_initializer_(options.init, options.imu.gravity_mps2),
+      preprocessor_(options.preprocess, options.imu.enabled),
+      estimator_(estimation::Estimator::Create(options.estimator, options.imu)),
+      map_(options.map),
+      matcher_(map_, options.planes),
+      twist_(options.imu) {
+  std::string why;
+  if (!options_.IsValid(&why)) throw InternalError("invalid options: " + why);
+}
+
+OdometryPipeline::~OdometryPipeline() = default;
+
+void OdometryPipeline::AddScan(LidarScan scan) {
+  // Point times are offsets from the scan start, so the two stamps carry the whole shift.
+  const int64_t offset_ns = options_.lidar.TimeOffsetNs();
+  scan.t_ns += offset_ns;
+  scan.end_t_ns += offset_ns;
+  queue_.AddScan(std::move(scan));
+}
+
+const std::vector<localization::LocalizationEvent>& OdometryPipeline::events() const {
+  static const std::vector<localization::LocalizationEvent> kNone;
+  return supervisor_ ? supervisor_->events() : kNone;
+}
+
+OdometryPipeline::Status OdometryPipeline::status() const {
+  if (status_ == Status::kRunning && supervisor_ && supervisor_->searching()) {
+    return Status::kInitializing;  // no pose in the map yet
+  }
+  if (status_ == Status::kRunning && supervisor_ && supervisor_->lost()) return Status::kLost;
+  return status_;
+}
+
+PipelineCounters OdometryPipeline::counters() const {
+  PipelineCounters c = counters_;
+  c.queue = queue_.counters();
+  if (supervisor_) {
+    c.scans_initializer = supervisor_->scans_initializer();
+    c.scans_bad_health = supervisor_->scans_bad_health();
+  }
+  return c;
+}
+
+void OdometryPipeline::Process(std::vector<ScanResult>* results, bool flush) {
+  MeasurementGroup group;
+  while (status_ != Status::kFailed && queue_.Pop(&group, flush)) {
+    if (status_ == Status::kInitializing) {
+      const std::size_t before = counters().scans_initializer;
+      if (Start(group)) {
+        if (counters().scans_initializer == before) ++counters_.scans_before_init;
+        continue;
+      }
+    }
+    ScanResult result;
+    if (ProcessScan(&group, &result)) results->push_back(std::move(result));
+  }
+  // A log that ends while the initializer still waits for static scans: register what there
+  // is rather than end without a pose.
+  if (flush && status_ == Status::kInitializing && supervisor_ && supervisor_->static_scans() > 0 &&
+      imu_initializer_.status() == estimation::ImuInitializer::Status::kDone) {
+    StartLocalization(MeasurementGroup());
+  }
+  if (flush && status_ == Status::kRunning && supervisor_ && supervisor_->searching()) {
+    Fail("no start pose: the log ended while searching (" + supervisor_->events().back().message +
+         ")");
+  }
+}
+
+void OdometryPipeline::Finish(std::vector<ScanResult>* results) {
+  Process(results, /*flush=*/true);
+  estimator_->Finish();
+}
+
+std::vector<estimation::NavState> OdometryPipeline::TakeFinalizedStates() {
+  std::vector<estimation::NavState> states;
+  estimator_->TakeFinalized(&states);
+  return states;
+}
+
+bool OdometryPipeline::FollowTiledPrior() {
+  const estimation::NavState& x = estimator_->state();
+  const Eigen::Vector3f position = x.p_map_imu.cast<float>();
+  map_.BeginScan(position);
+  if (!map_.prior_error().empty()) {
+    Fail("prior map: " + map_.prior_error());
+    return false;
+  }
+  if (supervisor_) {
+    supervisor_->SetOnMap(map_.OnPriorMap(position), x.t_ns,
+                          Eigen::Isometry3d(x.T_map_imu().Matrix()));
+    map_.SetOnDemand(supervisor_->lost());  // a lost vehicle may be anywhere in the map
+  }
+  return true;
+}
+
+bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) {
+  const auto start = std::chrono::steady_clock::now();
+  const double cpu_start_ms = CpuMs();
+  if (map_.tiled() && !FollowTiledPrior()) return false;
+  std::vector<int64_t> knots;
+  for (const ImuSample& s : group->imu) {
+    estimator_->AddImu(s);
+    knots.push_back(s.t_ns);
+  }
+  PreparedScan scan;
+  ScanSanitizeReport sanitized;
+  const bool usable =
+      preprocessor_.Prepare(std::move(group->scan), knots, *estimator_, &scan, &sanitized);
+  counters_.points_dropped_sanitize += sanitized.total();
+  if (!usable) {
+    ++counters_.scans_too_small;
+    return false;
+  }
+  result->raw_points = scan.cleaned.points.size();
+  result->downsampled_points = scan.registration.points_lidar.size();
+  // The dense copy is deskewed with the same sweep motion; it is registered after the update.
+  const double dense_voxel_m = options_.output.dense_map_voxel_m;
+  const PointCloud dense_lidar =
+      dense_voxel_m > 0.0 ? preprocessor_.Deskewed(scan, dense_voxel_m) : PointCloud();
+  result->deskew_ms = MsSince(start);
+
+  const auto update_start = std::chrono::steady_clock::now();
+  const bool searching = supervisor_ && supervisor_->searching();
+  result->update =
+      estimator_->Update(scan.registration, searching ? supervisor_->search_matcher() : matcher_);
+  result->update_ms = MsSince(update_start);
+  ++counters_.scans_processed;
+  if (!result->update.applied) ++counters_.scans_not_applied;
+  if (result->update.degenerate) ++counters_.scans_degenerate;
+  result->t_ns = estimator_->state().t_ns;
+  result->state = estimator_->state();
+  result->pose_covariance = estimator_->PoseCovariance();
+  result->health = localization::EvaluateScanHealth(result->update, options_.localization);
+  const auto sweep_imu = [&] {
+    return Transformed(estimator_->state().T_imu_lidar, preprocessor_.Deskewed(scan, 0.0));
+  };
+  if (searching) {
+    // No pose in the map yet: the search-frame states and scans are not results.
+    std::string why;
+    const PointCloud map_points_search =
+        result->update.applied
+            ? Transformed(result->state.T_map_lidar(), scan.registration.points_lidar)
+            : PointCloud();
+    if (supervisor_->Search(sweep_imu(), map_points_search, map_, estimator_.get(), &why) ==
+        localization::LocalizationSupervisor::SearchStep::kGaveUp) {
+      Fail(why);
+    }
+    std::vector<estimation::NavState> search_frame_states;
+    estimator_->TakeFinalized(&search_frame_states);
+    return false;
+  }
+  if (supervisor_) {
+    // Health, loss and relocalization may replace the estimator's pose.
+    if (supervisor_->Supervise(result->t_ns, result->health, result->state, sweep_imu, map_,
+                               estimator_.get())) {
+      result->state = estimator_->state();
+      result->pose_covariance = estimator_->PoseCovariance();
+    }
+    result->T_map_odom = supervisor_->T_map_odom();
+  }
+  // The residuals have been read into the health; a run keeps every result, and a few
+  // thousand floats per scan would make its memory grow with its length.
+  std::vector<float>().swap(result->update.point_residuals_m);
+
+  const auto map_start = std::chrono::steady_clock::now();
+  UpdateMap(scan.registration, result);
+  result->map_ms = MsSince(map_start);
+  if (result->update.applied) {
+    result->registered_points_map = Transformed(result->state.T_map_lidar(), dense_lidar);
+  }
+  result->map_points = map_.Size();
+  twist_.Fill(group->imu, *estimator_, result);
+  result->total_ms = MsSince(start);
+  result->cpu_ms = CpuMs() - cpu_start_ms;
+  return true;
+}
+
+void OdometryPipeline::UpdateMap(const estimation::DeskewedScan& scan, ScanResult* result) {
+  const bool allowed = supervisor_
+                           ? supervisor_->MapUpdateAllowed(result->t_ns, result->update.applied,
+                                                           result->health, result->state)
+                           : options_.update_map && (map_.Size() == 0 || result->update.applied);
+  if (!allowed) return;
+  const lie::SE3d T_map_lidar = result->state.T_map_lidar();
+  map_.AddScan(Transformed(T_map_lidar, scan.points_lidar),
+               T_map_lidar.translation().cast<float>());
+  result->map_updated = true;
+}
+
+}  // namespace hylo::odometry
