@@ -172,7 +172,8 @@ void YamlReadVisitor::Convert(const YAML::Node& node, const std::string& key_pat
                               estimation::SlidingWindowOptions::RobustLoss* value) const {
   using L = estimation::SlidingWindowOptions::RobustLoss;
   if (!node.IsScalar() || !estimation::ParseRobustLoss(node.Scalar(), value)) {
-    Fail(key_path, Expected({L::kNone, L::kHuber, L::kCauchy}) + "; got " + Describe(node));
+    Fail(key_path,
+         Expected({L::kNone, L::kHuber, L::kCauchy, L::kGemanMcClure}) + "; got " + Describe(node));
   }
 }
 

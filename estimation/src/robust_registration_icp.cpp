@@ -1,58 +1,42 @@
 // The robust point-to-plane ICP of the robust registration, its quality measure and the
 // KISS-ICP model error (the flow that uses them is in robust_registration.cpp).
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "hylo/estimation/robust_registration.h"
+#include "hylo/registration/point_to_plane.h"
 
 namespace hylo::estimation {
 namespace {
 
-using Matrix6 = Eigen::Matrix<double, 6, 6>;
-using Vector6 = Eigen::Matrix<double, 6, 1>;
-
-// Geman-McClure weight ρ'(r²) for scale k: 1 at r = 0, 1/4 at r = k, ~k⁴/r⁴ far out, so a
-// residual much larger than the scale pulls (almost) nothing (Black and Rangarajan, IJCV 1996).
-double GemanMcClureWeight(double r, double k) {
-  const double u = 1.0 + (r * r) / (k * k);
-  return 1.0 / (u * u);
-}
-
-// Gauss-Newton step [δθ; δt] of the weighted point-to-plane residuals at T, right
-// perturbation R·Exp(δθ), t + δt (the NavState convention), and the count of points within
-// `inlier_m` of their plane at T. False with fewer than 6 matches.
+// One Gauss-Newton step [δθ; δt] of the point-to-plane residuals at T (right perturbation,
+// the NavState convention), residuals gated at `gate_m` and Geman-McClure weighted at scale
+// `kernel_m`; *matches and *inliers (within `inlier_m` of their plane) at T. False with fewer
+// than 6 matches.
 bool Step(const PointCloud& points_lidar, const lie::SE3d& T,
           const registration::PlaneMatcher& planes, double gate_m, double kernel_m, double inlier_m,
-          Vector6* step, std::size_t* matches, std::size_t* inliers) {
-  Matrix6 JtJ = Matrix6::Zero();
-  Vector6 Jtr = Vector6::Zero();
+          registration::Vector6* step, std::size_t* matches, std::size_t* inliers) {
   const Eigen::Matrix3d R = T.so3().Matrix();
   const Eigen::Vector3d t = T.translation();
-  registration::Plane plane;
-  *matches = 0;
-  *inliers = 0;
-  for (const Eigen::Vector3f& pf : points_lidar) {
-    const Eigen::Vector3d q = pf.cast<double>();
-    const Eigen::Vector3d p = R * q + t;
-    if (!planes.Match(p, &plane)) continue;
-    const double r = plane.Distance(p);
-    if (std::abs(r) < inlier_m) ++*inliers;
-    if (std::abs(r) > gate_m) continue;
-    Vector6 j;
-    j.head<3>() = q.cross(R.transpose() * plane.normal);
-    j.tail<3>() = plane.normal;
-    const double w = GemanMcClureWeight(r, kernel_m);
-    JtJ.noalias() += w * j * j.transpose();
-    Jtr.noalias() += w * r * j;
-    ++*matches;
-  }
-  if (*matches < 6) return false;
-  // A small ridge keeps a direction the planes do not constrain (a corridor) at zero step.
-  JtJ.diagonal().array() += 1e-6 * JtJ.diagonal().maxCoeff() + 1e-9;
-  *step = -JtJ.ldlt().solve(Jtr);
-  return step->allFinite();
+  const auto eq = registration::Reduce<6>(
+      points_lidar.size(),
+      [&](std::size_t i) {
+        registration::LinearizedResidual<6> l;
+        const Eigen::Vector3d q = points_lidar[i].cast<double>();
+        const Eigen::Vector3d p = R * q + t;
+        registration::Plane plane;
+        if (!planes.Match(p, &plane)) return l;
+        l.matched = true;
+        l.r = plane.Distance(p);
+        l.used = std::abs(l.r) <= gate_m;
+        if (l.used) l.J = registration::PointToPlaneJacobian(R, q, plane);
+        return l;
+      },
+      registration::RobustKernel::GemanMcClure(kernel_m), inlier_m);
+  *matches = eq.used;
+  *inliers = eq.inliers;
+  return eq.used >= 6 && registration::SolveStep(eq, step);
 }
 
 }  // namespace
@@ -72,14 +56,13 @@ PlaneIcpResult AlignPointToPlane(const PointCloud& points_lidar,
   result.T_map_lidar = T_start;
   double kernel_m = std::max(settings.kernel_m, settings.final_kernel_m);
   while (result.iterations < settings.max_iterations) {
-    Vector6 step;
+    registration::Vector6 step;
     ++result.iterations;
     if (!Step(points_lidar, result.T_map_lidar, planes, settings.gate_m, kernel_m,
               settings.inlier_m, &step, &result.matches, &result.inliers)) {
       break;
     }
-    lie::SE3d& T = result.T_map_lidar;
-    T = lie::SE3d(T.so3() * lie::SO3d::Exp(step.head<3>()), T.translation() + step.tail<3>());
+    result.T_map_lidar = registration::ApplyStep(result.T_map_lidar, step);
     const double moved_m = step.tail<3>().norm() + median_range_m * step.head<3>().norm();
     if (moved_m > settings.settle_fraction * kernel_m) continue;
     // Settled at this scale: narrow the kernel (coarse to fine) or stop at the finest.

@@ -10,6 +10,7 @@
 
 #include "hylo/estimation/ieskf/ieskf.h"
 #include "hylo/estimation/lidar_update.h"
+#include "hylo/registration/point_to_plane.h"
 
 namespace hylo::estimation {
 
@@ -17,20 +18,43 @@ using namespace state_index;  // NOLINT: index names only
 using lie::SO3d;
 using registration::Plane;
 
+namespace {
+
+// A state's pose and extrinsic as matrices, built once per linearisation, not per point.
+struct PosesAsMatrices {
+  explicit PosesAsMatrices(const NavState& x)
+      : R_map_imu(x.R_map_imu.Matrix()),
+        p_map_imu(x.p_map_imu),
+        R_imu_lidar(x.T_imu_lidar.so3().Matrix()),
+        t_imu_lidar(x.T_imu_lidar.translation()) {}
+  Eigen::Matrix3d R_map_imu;
+  Eigen::Vector3d p_map_imu;
+  Eigen::Matrix3d R_imu_lidar;
+  Eigen::Vector3d t_imu_lidar;
+};
+
+double Residual(const PosesAsMatrices& x, const Eigen::Vector3d& point_lidar, const Plane& plane,
+                ResidualJacobian* jacobian) {
+  const Eigen::Vector3d point_imu = x.R_imu_lidar * point_lidar + x.t_imu_lidar;
+  const double r = plane.Distance(x.R_map_imu * point_imu + x.p_map_imu);
+  if (jacobian != nullptr) {
+    // The pose blocks are the point-to-plane factor's (registration/point_to_plane.h); the
+    // extrinsic's are the same factor one frame further in: p_imu = R_il p_lidar + t_il, so
+    // ∂r/∂δθ_il = (p_lidar × R_ilᵀ n_imu)ᵀ and ∂r/∂δt_il = n_imuᵀ.
+    const Plane plane_imu{x.R_map_imu.transpose() * plane.normal, 0.0};
+    jacobian->block<1, 6>(0, 0) =
+        registration::PointToPlaneJacobian(x.R_map_imu, point_imu, plane).transpose();
+    jacobian->block<1, 6>(0, 6) =
+        registration::PointToPlaneJacobian(x.R_imu_lidar, point_lidar, plane_imu).transpose();
+  }
+  return r;
+}
+
+}  // namespace
+
 double PointToPlaneResidual(const NavState& x, const Eigen::Vector3d& point_lidar,
                             const Plane& plane, ResidualJacobian* jacobian) {
-  const Eigen::Vector3d point_imu = x.T_imu_lidar * point_lidar;
-  const Eigen::Vector3d point_map = x.R_map_imu * point_imu + x.p_map_imu;
-  if (jacobian != nullptr) {
-    // R·Exp(δθ)·q ≈ R q − R [q]^ δθ, so ∂r/∂δθ = −nᵀ R [q]^ = (q × Rᵀn)ᵀ.
-    const Eigen::Vector3d n_imu = x.R_map_imu.Inverse() * plane.normal;
-    const Eigen::Vector3d n_lidar = x.T_imu_lidar.so3().Inverse() * n_imu;
-    jacobian->block<1, 3>(0, 0) = point_imu.cross(n_imu).transpose();
-    jacobian->block<1, 3>(0, 3) = plane.normal.transpose();
-    jacobian->block<1, 3>(0, 6) = point_lidar.cross(n_lidar).transpose();
-    jacobian->block<1, 3>(0, 9) = n_imu.transpose();
-  }
-  return plane.Distance(point_map);
+  return Residual(PosesAsMatrices(x), point_lidar, plane, jacobian);
 }
 
 int Ieskf::ActiveDim() const { return options_.ieskf.online_extrinsic ? kDim : kDimNoExtrinsic; }
@@ -49,28 +73,32 @@ void Ieskf::Associate(const NavState& x, const DeskewedScan& scan,
 
 Ieskf::LidarSystem Ieskf::BuildLidarSystem(const NavState& x, const DeskewedScan& scan,
                                            const registration::PlaneMatcher& planes) const {
-  LidarSystem system;
-  ResidualJacobian h;
-  for (std::size_t i = 0; i < scan.points_lidar.size(); ++i) {
-    if (!matched_[i]) continue;
-    const Eigen::Vector3d p = scan.points_lidar[i].cast<double>();
-    const double r = PointToPlaneResidual(x, p, planes_[i], &h);
-    if (!planes.PassesGate(r, p.norm())) continue;
-    system.HtH.noalias() += h.transpose() * h;
-    system.Htr.noalias() += h.transpose() * r;
-    ++system.matches;
-  }
-  return system;
+  const PosesAsMatrices poses(x);
+  return registration::Reduce<12>(
+      scan.points_lidar.size(),
+      [&](std::size_t i) {
+        registration::LinearizedResidual<12> l;
+        if (!matched_[i]) return l;
+        const Eigen::Vector3d p = scan.points_lidar[i].cast<double>();
+        ResidualJacobian h;
+        l.matched = true;
+        l.r = Residual(poses, p, planes_[i], &h);
+        l.used = planes.PassesGate(l.r, p.norm());
+        l.J = h.transpose();
+        return l;
+      },
+      registration::RobustKernel::None());
 }
 
 void Ieskf::ReportFit(const NavState& x, const DeskewedScan& scan,
                       const registration::PlaneMatcher& planes, UpdateSummary* summary) const {
   LidarFit fit(scan.points_lidar.size());
   const lie::SO3d R_imu_map = x.R_map_imu.Inverse();
+  const PosesAsMatrices poses(x);
   for (std::size_t i = 0; i < scan.points_lidar.size(); ++i) {
     if (!matched_[i]) continue;
     const Eigen::Vector3d p = scan.points_lidar[i].cast<double>();
-    const double r = PointToPlaneResidual(x, p, planes_[i], nullptr);
+    const double r = Residual(poses, p, planes_[i], nullptr);
     fit.Add(i, x.T_imu_lidar * p, R_imu_map * planes_[i].normal, r, planes.PassesGate(r, p.norm()));
   }
   fit.Report(options_.lidar_update, summary);
@@ -139,7 +167,7 @@ void Ieskf::Correct(const DeskewedScan& scan, const registration::PlaneMatcher& 
   NavState x = UpdateStart(prior, scan, planes,
                            [&](const NavState& candidate) {
                              Associate(candidate, scan, planes);
-                             return BuildLidarSystem(candidate, scan, planes).matches;
+                             return BuildLidarSystem(candidate, scan, planes).used;
                            },
                            summary);
   Eigen::MatrixXd A;
@@ -148,16 +176,16 @@ void Ieskf::Correct(const DeskewedScan& scan, const registration::PlaneMatcher& 
     if (rematch) Associate(x, scan, planes);
     const LidarSystem system = BuildLidarSystem(x, scan, planes);
     summary->iterations = it + 1;
-    summary->num_matches = system.matches;
-    if (static_cast<int>(system.matches) < lidar.min_matches) {
-      summary->message = TooFewMatchesMessage(system.matches, lidar.min_matches);
+    summary->num_matches = system.used;
+    if (static_cast<int>(system.used) < lidar.min_matches) {
+      summary->message = TooFewMatchesMessage(system.used, lidar.min_matches);
       return;  // the prediction stands
     }
     const StateVector dx = BoxMinus(x, prior);
     const Eigen::MatrixXd J = PriorJacobian(dx, dim);
     A = J.transpose() * P_prior_inv * J;
     Eigen::VectorXd b = J.transpose() * (P_prior_inv * dx.head(dim));
-    AddLidarSystem(system.HtH, system.Htr, weight, dim, &A, &b);
+    AddLidarSystem(system.JtJ, system.Jtr, weight, dim, &A, &b);
     if (summary->standstill) {
       // v_map = 0 measured with noise σ: residual v, Jacobian I on the velocity block.
       A.block<3, 3>(kVelocity, kVelocity).diagonal().array() += zero_velocity_weight;

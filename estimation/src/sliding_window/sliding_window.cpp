@@ -119,26 +119,16 @@ std::size_t SlidingWindow::AssociateNewest(const registration::PlaneMatcher& pla
 }
 
 void SlidingWindow::Reweight() {
-  // Iteratively reweighted least squares: the robust loss's weight ρ'(r²) at the current
-  // estimate, fixed during the next solver round (Zhang, "Parameter estimation techniques",
-  // IVC 1997, Sec. 5.1). Huber: 1 inside c, c/|r| outside; Cauchy: 1/(1 + r²/c²).
-  const SlidingWindowOptions& o = options_.sliding_window;
-  const double c = o.robust_loss_scale_m;
-  const bool huber = o.robust_loss == SlidingWindowOptions::RobustLoss::kHuber;
-  const bool cauchy = o.robust_loss == SlidingWindowOptions::RobustLoss::kCauchy;
+  // Iteratively reweighted least squares (robust_kernel.h): the kernel's weight at the
+  // current estimate, fixed during the next solver round.
+  const registration::RobustKernel kernel = options_.sliding_window.Kernel();
   const double lidar_noise_m = options_.lidar_update.lidar_noise_m;
   for (std::size_t k = 0; k < window_.size(); ++k) {
     const lie::SE3d T_map_imu = StateAt(k).T_map_imu();
     const Eigen::Matrix3d R = T_map_imu.so3().Matrix();
     const Eigen::Vector3d p = T_map_imu.translation();
     for (PlaneMatch& m : window_[k]->matches) {
-      const double r = std::abs(m.plane.Distance(R * m.point_imu + p));
-      double w = 1.0;
-      if (huber) {
-        w = r <= c ? 1.0 : c / r;
-      } else if (cauchy) {
-        w = 1.0 / (1.0 + (r * r) / (c * c));
-      }
+      const double w = kernel.Weight(m.plane.Distance(R * m.point_imu + p));
       m.sqrt_weight = std::sqrt(w) / lidar_noise_m;
     }
   }

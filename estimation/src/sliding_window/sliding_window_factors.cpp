@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "hylo/estimation/sliding_window/so3_manifold.h"
+#include "hylo/registration/point_to_plane.h"
 
 namespace hylo::estimation {
 namespace {
@@ -118,15 +119,15 @@ bool ScanPlaneFactor::Evaluate(double const* const* parameters, double* residual
   for (std::size_t k = 0; k < matches_.size(); ++k) {
     const PlaneMatch& m = matches_[k];
     residuals[k] = m.sqrt_weight * m.plane.Distance(R * m.point_imu + p);
+    if (!want_rotation && !want_position) continue;
+    // The point-to-plane factor of every solver (registration/point_to_plane.h).
+    const registration::Vector6 J =
+        m.sqrt_weight * registration::PointToPlaneJacobian(R, m.point_imu, m.plane);
     if (want_rotation) {
-      // R·Exp(δ)·q ≈ R q − R [q]^ δ, so ∂r/∂δ = −nᵀ R [q]^ = (q × Rᵀn)ᵀ (as the IESKF).
-      const Eigen::RowVector3d d_theta =
-          m.sqrt_weight * m.point_imu.cross(R.transpose() * m.plane.normal).transpose();
-      Eigen::Map<Eigen::RowVector4d>(jacobians[0] + 4 * k) = d_theta * lift;
+      Eigen::Map<Eigen::RowVector4d>(jacobians[0] + 4 * k) = J.head<3>().transpose() * lift;
     }
     if (want_position) {
-      Eigen::Map<Eigen::RowVector3d>(jacobians[1] + 3 * k) =
-          m.sqrt_weight * m.plane.normal.transpose();
+      Eigen::Map<Eigen::RowVector3d>(jacobians[1] + 3 * k) = J.tail<3>().transpose();
     }
   }
   return true;

@@ -17,8 +17,6 @@ const std::pair<LinearSolver, const char*> kSolverNames[] = {
     {LinearSolver::kDenseSchur, "dense_schur"},
     {LinearSolver::kSparseSchur, "sparse_schur"},
     {LinearSolver::kDenseQr, "dense_qr"}};
-const std::pair<RobustLoss, const char*> kLossNames[] = {
-    {RobustLoss::kNone, "none"}, {RobustLoss::kHuber, "huber"}, {RobustLoss::kCauchy, "cauchy"}};
 
 }  // namespace
 
@@ -26,9 +24,9 @@ std::string ToString(LinearSolver solver) { return NameOf(kSolverNames, solver);
 bool ParseLinearSolver(const std::string& name, LinearSolver* solver) {
   return ValueOf(kSolverNames, name, solver);
 }
-std::string ToString(RobustLoss loss) { return NameOf(kLossNames, loss); }
+std::string ToString(RobustLoss loss) { return registration::ToString(loss); }
 bool ParseRobustLoss(const std::string& name, RobustLoss* loss) {
-  return ValueOf(kLossNames, name, loss);
+  return registration::ParseRobustKernelType(name, loss);
 }
 
 bool SlidingWindowOptions::IsValid(std::string* why) const {

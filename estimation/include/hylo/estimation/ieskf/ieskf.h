@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "hylo/estimation/backend_base.h"
+#include "hylo/registration/point_to_plane.h"
 
 namespace hylo::estimation {
 
@@ -34,11 +35,8 @@ class Ieskf final : public BackendBase {
 
  private:
   // Normal equations of the lidar residuals over the compact 12 columns.
-  struct LidarSystem {
-    Eigen::Matrix<double, 12, 12> HtH = Eigen::Matrix<double, 12, 12>::Zero();
-    Eigen::Matrix<double, 12, 1> Htr = Eigen::Matrix<double, 12, 1>::Zero();
-    std::size_t matches = 0;
-  };
+  // The lidar residuals' normal equations over [δθ, δp, δθ_il, δt_il].
+  using LidarSystem = registration::NormalEquations<12>;
 
   void Propagate(int64_t t_ns);                  // ieskf.cpp
   void PropagateConstantVelocity(int64_t t_ns);  // ieskf.cpp

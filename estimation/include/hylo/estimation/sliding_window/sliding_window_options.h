@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "hylo/registration/robust_kernel.h"
+
 namespace hylo::estimation {
 
 struct SlidingWindowOptions {
@@ -15,8 +17,8 @@ struct SlidingWindowOptions {
     kSparseSchur,           ///< sparse_schur
     kDenseQr,               ///< dense_qr
   };
-  /// Robust loss on the point-to-plane residuals.
-  enum class RobustLoss { kNone, kHuber, kCauchy };
+  /// Robust loss on the point-to-plane residuals: the kernels of every solver of the project.
+  using RobustLoss = registration::RobustKernel::Type;
 
   int window_size = 10;             ///< states (scans) optimised together, >= 2
   int max_iterations = 6;           ///< Ceres iterations per association round, >= 1
@@ -34,11 +36,14 @@ struct SlidingWindowOptions {
   /// for comparisons, the window then forgets what the dropped states knew).
   bool marginalize = true;
 
+  /// The kernel of robust_loss at robust_loss_scale_m.
+  registration::RobustKernel Kernel() const { return {robust_loss, robust_loss_scale_m}; }
+
   bool IsValid(std::string* why) const;
 };
 
 /// Configuration names of the enums ("sparse_normal_cholesky", ..., "none", "huber",
-/// "cauchy"); Parse* return false for an unknown name.
+/// "cauchy", "geman_mcclure"); Parse* return false for an unknown name.
 std::string ToString(SlidingWindowOptions::LinearSolver solver);
 bool ParseLinearSolver(const std::string& name, SlidingWindowOptions::LinearSolver* solver);
 std::string ToString(SlidingWindowOptions::RobustLoss loss);
