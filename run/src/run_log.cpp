@@ -10,27 +10,28 @@
 #include <stdexcept>
 
 #include "hylo/common/time.h"
-#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/odometry/odometry_pipeline.h"
 #include "hylo/evaluation/cloud_distance.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/logs/log_reader.h"
 #include "hylo/io/progress.h"
 #include "hylo/registration/voxel_filter.h"
 #include "hylo/run/prior_map_io.h"
+#include "hylo/run/session.h"
 #include "run_outputs.h"
 
 namespace hylo::run {
 namespace {
 
-using estimation::OdometryPipeline;
-using estimation::ScanResult;
+using odometry::OdometryPipeline;
+using odometry::ScanResult;
 
-io::Json EventsJson(const std::vector<estimation::LocalizationEvent>& events,
+io::Json EventsJson(const std::vector<localization::LocalizationEvent>& events,
                     const Eigen::Vector3d& origin_world) {
   io::Json array = io::Json::array();
   for (const auto& e : events) {
     io::Json j;
-    j["kind"] = estimation::ToString(e.kind);
+    j["kind"] = localization::ToString(e.kind);
     j["t_s"] = NanosToSeconds(e.t_ns);
     const Eigen::Vector3d p = e.T_map_imu.translation() + origin_world;
     j["position_m"] = io::Json::array({p.x(), p.y(), p.z()});
@@ -64,20 +65,9 @@ io::Json CloudToCloudJson(const PointCloud& registered_map,
   return j;
 }
 
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-double ProcessCpuSeconds() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
 }  // namespace
 
-io::Json PipelineCountersJson(const estimation::PipelineCounters& c) {
+io::Json PipelineCountersJson(const odometry::PipelineCounters& c) {
   io::Json j;
   j["scans_processed"] = c.scans_processed;
   j["scans_before_init"] = c.scans_before_init;
@@ -112,7 +102,7 @@ io::Json LogRecoveryJson(const logs::LogRecovery& r) {
   return j;
 }
 
-std::string ImuFaultsLine(const estimation::QueueCounters& q, std::size_t unread_non_finite) {
+std::string ImuFaultsLine(const odometry::QueueCounters& q, std::size_t unread_non_finite) {
   std::string line;
   const auto add = [&](std::size_t n, const std::string& what) {
     if (n > 0) line += (line.empty() ? "" : ", ") + std::to_string(n) + " " + what;
@@ -133,7 +123,6 @@ std::string ImuFaultsLine(const estimation::QueueCounters& q, std::size_t unread
 }
 
 RunResult RunLog(const RunRequest& request) {
-  const auto run_start = std::chrono::steady_clock::now();
   const config::RunConfig& config = request.config;
   std::error_code ec;
   std::filesystem::create_directories(request.out_dir, ec);
@@ -142,62 +131,35 @@ RunResult RunLog(const RunRequest& request) {
                              "': " + ec.message());
   }
   config::SaveRunConfig(request.out_dir + "/config.yaml", config);
-  OdometryPipeline pipeline(config.PipelineOptions());
+  Session session(config.PipelineOptions());
+  const OdometryPipeline& pipeline = session.pipeline();
 
   // Prior map in a local frame near zero; everything written goes back to the world frame.
   const bool localizing = !request.prior_map.empty();
-  mapping::PriorMap prior;
   if (localizing) {
-    prior = LoadPriorMap(request.prior_map, config.prior_map, request.guess_world_imu, &pipeline);
+    session.LoadPriorMap(request.prior_map, config.prior_map, request.guess_world_imu);
   }
-  const Eigen::Vector3d origin_world = prior.origin_world;
-  const double prior_loaded_after_s = SecondsSince(run_start);
+  const mapping::PriorMap& prior = session.prior();
+  const Eigen::Vector3d origin_world = session.origin_world();
+  const double prior_loaded_after_s = session.ElapsedSeconds();
 
   auto log = logs::OpenLog(request.log, config.LogOptions());
   if (const logs::LogRecovery* r = log->recovery()) {
     std::fprintf(stderr, "warning: %s: %s: read record by record up to its last complete message\n",
                  request.log.c_str(), r->damage.c_str());
   }
-  std::vector<ScanResult> results;
-  // Dense registered scans, one point per voxel (the crafting input and the c2c metric).
-  // A hash of voxels, not a tree: nothing searches this map during the run, and the tree's
-  // downsampling insert cost as much per scan as the odometry (hylo map, session A).
-  const float dense_voxel_m = static_cast<float>(config.pipeline.output.dense_map_voxel_m);
-  std::optional<registration::UniformSampler> dense_map;
-  if (dense_voxel_m > 0.f) dense_map.emplace(dense_voxel_m);
-  std::vector<estimation::NavState> finalized;
-  std::size_t consumed = 0;
-  auto consume = [&] {
-    for (; consumed < results.size(); ++consumed) {
-      auto& points = results[consumed].registered_points_map;
-      if (dense_map && !points.empty()) dense_map->Add(points);
-      PointCloud().swap(points);
-    }
-    for (estimation::NavState& x : pipeline.TakeFinalizedStates()) finalized.push_back(x);
-  };
   io::Progress progress(request.label, 0, request.show_progress);
   logs::LogMessage message;
-  std::size_t scans = 0;
-  // Wall time from the start of the run (prior map loading included) to the first pose, and
-  // the process's CPU time (every thread) by then: what it takes on an idle machine.
-  double first_pose_after_s = std::nan(""), first_pose_cpu_s = std::nan("");
   while (log->Next(&message)) {
     if (message.kind == logs::LogMessage::Kind::kImu) {
-      pipeline.AddImu(message.imu);
+      session.AddImu(message.imu);
       continue;
     }
-    pipeline.AddScan(std::move(message.scan));
-    pipeline.Process(&results);
-    consume();
-    if (std::isnan(first_pose_after_s) && !results.empty()) {
-      first_pose_after_s = SecondsSince(run_start);
-      first_pose_cpu_s = ProcessCpuSeconds();
-    }
-    progress.Update(++scans);
-    if (pipeline.status() == OdometryPipeline::Status::kFailed) break;
+    session.AddScan(std::move(message.scan));
+    progress.Update(session.scans_added());
+    if (session.failed()) break;
   }
-  pipeline.Finish(&results);
-  consume();
+  session.Finish();
   progress.Finish();
   const logs::LogRecovery* recovery = log->recovery();
   if (recovery != nullptr) {
@@ -208,14 +170,13 @@ RunResult RunLog(const RunRequest& request) {
   if (!imu_faults.empty()) {
     std::fprintf(stderr, "warning: %s: IMU: %s\n", request.log.c_str(), imu_faults.c_str());
   }
-  if (pipeline.status() == OdometryPipeline::Status::kFailed) {
-    throw std::runtime_error(request.log + ": " + pipeline.message());
-  }
+  if (session.failed()) throw std::runtime_error(request.log + ": " + pipeline.message());
+  const std::vector<ScanResult>& results = session.results();
   if (results.empty()) throw std::runtime_error(request.log + ": no scan was processed");
 
   RunResult run;
-  run.trajectory = WorldTrajectory(finalized, origin_world);
-  run.live_trajectory = WorldTrajectory(LiveStates(results), origin_world);
+  run.trajectory = session.Trajectory();
+  run.live_trajectory = session.LiveTrajectory();
   io::WriteTum(request.out_dir + "/trajectory.tum", run.trajectory);
   io::WriteTum(request.out_dir + "/trajectory_live.tum", run.live_trajectory);
   WriteOdometryCsv(request.out_dir + "/odometry.csv", results, origin_world, config.output);
@@ -232,13 +193,15 @@ RunResult RunLog(const RunRequest& request) {
     tiles_added = WriteAddedTiles(request.out_dir + "/map_added", prior, pipeline,
                                   config.pipeline.map.voxel_size_m);
   }
-  const PointCloud no_dense_map;
-  const PointCloud& dense = dense_map ? dense_map->points() : no_dense_map;
-  if (dense_map) WriteWorldCloud(request.out_dir + "/map_dense.pcd", dense, origin_world);
+  const PointCloud& dense = session.dense_map();
+  if (config.pipeline.output.dense_map_voxel_m > 0.0) {
+    WriteWorldCloud(request.out_dir + "/map_dense.pcd", dense, origin_world);
+  }
+  const std::vector<estimation::NavState>& finalized = session.finalized();
 
   double path_m = 0.0;
   std::vector<double> cpu_ms;
-  for (const estimation::ScanResult& r : results) {
+  for (const odometry::ScanResult& r : results) {
     run.ms_per_scan.push_back(r.total_ms);
     cpu_ms.push_back(r.cpu_ms);
   }
@@ -273,8 +236,8 @@ RunResult RunLog(const RunRequest& request) {
   j["peak_memory_mb"] = usage.ru_maxrss / 1024.0;
   j["elapsed_s"] = progress.ElapsedSeconds();
   j["prior_map_loaded_after_s"] = prior_loaded_after_s;
-  j["first_pose_after_s"] = first_pose_after_s;
-  j["first_pose_cpu_s"] = first_pose_cpu_s;
+  j["first_pose_after_s"] = session.first_pose_after_s();
+  j["first_pose_cpu_s"] = session.first_pose_cpu_s();
   j["origin_world"] = io::Json::array({origin_world.x(), origin_world.y(), origin_world.z()});
   j["events"] = EventsJson(pipeline.events(), origin_world);
   if (localizing) {

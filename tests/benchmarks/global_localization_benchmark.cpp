@@ -25,8 +25,8 @@
 #include "global_scenes.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/mapping/ikd_tree.h"
-#include "hylo/registration/global_localizer.h"
-#include "hylo/registration/icp_initializer.h"
+#include "hylo/localization/global_localizer.h"
+#include "hylo/localization/icp_initializer.h"
 #include "hylo/registration/plane_matcher.h"
 #include "hylo/registration/voxel_filter.h"
 #include "test_data.h"
@@ -47,8 +47,8 @@ struct Args {
   bool verbose = false;           // print every hypothesis against the truth
   bool real = true;               // the real scans of other places
   double sensor_height_m = -1.0;  // -1: the simulated vehicle's IMU height; 0: from the scan
-  registration::GlobalLocalizerOptions global;
-  registration::GlobalMapOptions raster;
+  localization::GlobalLocalizerOptions global;
+  localization::GlobalMapOptions raster;
 };
 
 Args Parse(int argc, char** argv) {
@@ -132,7 +132,7 @@ StaticView ViewOf(const sim::SessionRecording& rec, const Eigen::Isometry3d& T_i
   }
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   for (const ImuSample& s : rec.imu) force += s.accel_imu;
-  view.R_level = registration::GuessFromGravity(Eigen::Vector3d::Zero(), 0.0, force).linear();
+  view.R_level = localization::GuessFromGravity(Eigen::Vector3d::Zero(), 0.0, force).linear();
   return view;
 }
 
@@ -201,12 +201,12 @@ FitMeasures Measure(const PointCloud& scan_fine, const registration::NeighborSea
 
 // One line per refined hypothesis: where it lies against the truth and how it fits.
 void DumpHypotheses(std::FILE* out, const char* group, std::size_t start,
-                    const registration::GlobalLocalizationResult& r, const PointCloud& scan_imu,
+                    const localization::GlobalLocalizationResult& r, const PointCloud& scan_imu,
                     const registration::NeighborSearch& tree, const Eigen::Isometry3d* T_true) {
   if (out == nullptr) return;
   const PointCloud scan_fine = registration::UniformSample(scan_imu, 0.2f);
   for (std::size_t i = 0; i < r.hypotheses.size(); ++i) {
-    const registration::GlobalHypothesis& h = r.hypotheses[i];
+    const localization::GlobalHypothesis& h = r.hypotheses[i];
     if (!h.refined) continue;
     double err_m = std::nan(""), err_deg = std::nan("");
     if (T_true != nullptr) {
@@ -219,7 +219,7 @@ void DumpHypotheses(std::FILE* out, const char* group, std::size_t start,
         out,
         "%s,%zu,%zu,%s,%.4f,%.4f,%.3f,%d,%.5f,%.4f,%.5f,%.5f,%.5f,%.4f,%.4f,%.4f,%.4f,%.5f,%.4f,"
         "%.4f,%.4f\n",
-        group, start, i, registration::ToString(r.status).c_str(), h.score, err_m, err_deg,
+        group, start, i, localization::ToString(r.status).c_str(), h.score, err_m, err_deg,
         h.passes ? 1 : 0, h.fitness_m2, h.inlier_ratio, m.fit05, m.trim80, m.trim90, m.median_m,
         m.in10, m.in20, m.in30, m.plane_fit, m.plane05, m.plane10, h.ground_support);
   }
@@ -246,8 +246,8 @@ double Quantile(std::vector<double> v, double q) {
 GroupResult RunGroup(const char* name, const sim::SimulationOptions& sim_options,
                      const sim::Site& site, const std::vector<benchmarks::StartPose>& starts,
                      const Eigen::Isometry3d& T_map_site,
-                     const registration::GlobalLocalizer& localizer,
-                     const registration::GlobalMap& global_map,
+                     const localization::GlobalLocalizer& localizer,
+                     const localization::GlobalMap& global_map,
                      const registration::NeighborSearch& tree, const Args& args) {
   GroupResult g;
   for (std::size_t k = 0; k < starts.size(); ++k) {
@@ -259,7 +259,7 @@ GroupResult RunGroup(const char* name, const sim::SimulationOptions& sim_options
         benchmarks::SimulateStart(sim_options, site, sim::SessionId::kB, starts[k], 2.05, 5.0);
     // The first 2 s: one second of IMU rest, then ten scans while still at rest.
     const StaticView view = ViewOf(rec, sim_options.lidar.T_imu_lidar, 10, 10);
-    const registration::GlobalLocalizationResult r =
+    const localization::GlobalLocalizationResult r =
         localizer.Localize(view.scan_imu, view.R_level, global_map, tree);
     ++g.total;
     g.all_ms.push_back(r.elapsed_s * 1e3);
@@ -267,7 +267,7 @@ GroupResult RunGroup(const char* name, const sim::SimulationOptions& sim_options
     DumpHypotheses(g_dump, name, k, r, view.scan_imu, tree, &T_truth);
     double err_m = -1, err_deg = -1;
     const char* verdict = "";
-    if (r.status == registration::GlobalStatus::kAccepted) {
+    if (r.status == localization::GlobalStatus::kAccepted) {
       g.accept_ms.push_back(r.elapsed_s * 1e3);
       const Eigen::Isometry3d T_true = T_map_site * rec.truth.front().T_map_imu;
       const Eigen::Isometry3d d = T_true.inverse() * r.T_map_imu;
@@ -276,7 +276,7 @@ GroupResult RunGroup(const char* name, const sim::SimulationOptions& sim_options
       const bool ok = err_m <= 0.1 && err_deg <= 1.0;
       verdict = ok ? "correct" : "WRONG";
       (ok ? g.correct : g.wrong)++;
-    } else if (r.status == registration::GlobalStatus::kAmbiguous) {
+    } else if (r.status == localization::GlobalStatus::kAmbiguous) {
       verdict = "ambiguous";
       ++g.ambiguous;
     } else {
@@ -289,7 +289,7 @@ GroupResult RunGroup(const char* name, const sim::SimulationOptions& sim_options
         name, k, starts[k].xy_m.x(), starts[k].xy_m.y(), starts[k].heading_rad * 180 / M_PI,
         verdict, r.stats.search_s * 1e3, r.refine_s * 1e3, err_m, err_deg, r.message.c_str());
     if (args.verbose) {
-      for (const registration::GlobalHypothesis& h : r.hypotheses) {
+      for (const localization::GlobalHypothesis& h : r.hypotheses) {
         const Eigen::Isometry3d d = T_truth.inverse() * h.T_map_imu;
         const Eigen::Isometry3d dr = T_truth.inverse() * h.T_refined;
         const Eigen::Isometry3d dc = T_truth.inverse() * h.T_coarse;
@@ -315,8 +315,8 @@ GroupResult RunGroup(const char* name, const sim::SimulationOptions& sim_options
 
 // Real scans of other places (the data README's hand-held walk and Velodyne pair), each
 // localized alone, levelled as a ground vehicle would be (no IMU): any accept is wrong.
-GroupResult RunRealScans(const registration::GlobalLocalizer& localizer,
-                         const registration::GlobalMap& global_map,
+GroupResult RunRealScans(const localization::GlobalLocalizer& localizer,
+                         const localization::GlobalMap& global_map,
                          const registration::NeighborSearch& tree) {
   GroupResult g;
   std::vector<std::string> paths;
@@ -337,15 +337,15 @@ GroupResult RunRealScans(const registration::GlobalLocalizer& localizer,
   for (const std::string& path : paths) {
     PointCloud scan;
     for (const Eigen::Vector3d& p : io::ReadCloud(path).positions) scan.push_back(p.cast<float>());
-    const registration::GlobalLocalizationResult r =
+    const localization::GlobalLocalizationResult r =
         localizer.Localize(scan, Eigen::Matrix3d::Identity(), global_map, tree);
     ++g.total;
     g.all_ms.push_back(r.elapsed_s * 1e3);
     DumpHypotheses(g_dump, "real", g.total, r, scan, tree, nullptr);
-    if (r.status == registration::GlobalStatus::kAccepted) {
+    if (r.status == localization::GlobalStatus::kAccepted) {
       ++g.wrong;
       g.accept_ms.push_back(r.elapsed_s * 1e3);
-    } else if (r.status == registration::GlobalStatus::kAmbiguous) {
+    } else if (r.status == localization::GlobalStatus::kAmbiguous) {
       ++g.ambiguous;
     } else {
       ++g.not_found;
@@ -395,8 +395,8 @@ int main(int argc, char** argv) {
   benchmarks::Report report;
   const std::size_t heap0 = benchmarks::HeapBytes();
   t0 = NowMs();
-  const registration::GlobalMap global_map =
-      registration::GlobalMap::Build(prior.points_map, args.raster);
+  const localization::GlobalMap global_map =
+      localization::GlobalMap::Build(prior.points_map, args.raster);
   const double prepare_ms = NowMs() - t0;
   report.Set("map", "points", static_cast<double>(prior.points_map.size()));
   report.Set("map", "raster_cells",
@@ -416,14 +416,14 @@ int main(int argc, char** argv) {
   }
   const Eigen::Isometry3d T_map_site = prior.T_site_map.inverse();
   // The IMU's height above the wheels is a constant of the vehicle, set like its extrinsic.
-  registration::GlobalLocalizerOptions global = args.global;
+  localization::GlobalLocalizerOptions global = args.global;
   global.sensor_height_m =
       args.sensor_height_m < 0.0 ? sim_options.trajectory.imu_height_m : args.sensor_height_m;
   std::printf("sensor height: %s\n", global.sensor_height_m > 0.0
                                          ? std::to_string(global.sensor_height_m).c_str()
                                          : "estimated from each scan");
   report.Set("map", "sensor_height_m", global.sensor_height_m);
-  const registration::GlobalLocalizer localizer(global, registration::IcpInitializerOptions());
+  const localization::GlobalLocalizer localizer(global, localization::IcpInitializerOptions());
 
   // Over the mapped site: everywhere session A's map has ground, the annex left out.
   benchmarks::StartRegion mapped;

@@ -32,10 +32,11 @@
 #include "benchmark_common.h"
 #include "estimation/sim_localization_util.h"
 #include "hylo/evaluation/trajectory_metrics.h"
+#include "hylo/run/session.h"
 
 namespace {
 
-using hylo::estimation::OdometryPipeline;
+using hylo::odometry::OdometryPipeline;
 
 /// VmRSS of this process, MB.
 double RssMb() {
@@ -80,20 +81,26 @@ struct Minute {
 
 class HourSink : public hylo::sim::SessionSink {
  public:
-  HourSink(const hylo::estimation::OdometryPipelineOptions& options,
+  HourSink(const hylo::odometry::OdometryPipelineOptions& options,
            const Eigen::Isometry3d& T_site_map, const std::unordered_set<int64_t>& prior_cells,
            bool hybrid)
-      : pipeline(options), T_site_map_(T_site_map), prior_cells_(prior_cells), hybrid_(hybrid) {}
+      : session(options, hylo::run::SessionKeeps{false, false, false}),
+        pipeline(session.pipeline()),
+        T_site_map_(T_site_map),
+        prior_cells_(prior_cells),
+        hybrid_(hybrid) {
+    session.OnResult([this](const hylo::odometry::ScanResult& r) { CountAdded(r); });
+    session.OnFinalized([this](const hylo::estimation::NavState& x) { Score(x); });
+  }
 
-  void OnImu(const hylo::ImuSample& s) override { pipeline.AddImu(s); }
+  void OnImu(const hylo::ImuSample& s) override { session.AddImu(s); }
   void OnTruth(const hylo::sim::TruthSample& t) override {
     truth_.push_back({t.t_ns, t.T_map_imu});
     while (truth_.size() > 1000) truth_.pop_front();  // 5 s: more than any back-end's lag
   }
   void OnScan(const hylo::LidarScan& s) override {
     if (t0_ < 0) t0_ = s.t_ns;
-    pipeline.AddScan(s);
-    Consume(false);
+    session.AddScan(s);
     const int64_t since = s.t_ns - t0_;
     while (since >= next_sample_ns_) {  // every 10 s of session time
       rss_samples_.push_back(RssMb());
@@ -102,33 +109,26 @@ class HourSink : public hylo::sim::SessionSink {
     }
   }
   void Finish() {
-    Consume(true);
+    session.Finish();
     EndMinute();
   }
 
-  OdometryPipeline pipeline;
+  hylo::run::Session session;
+  OdometryPipeline& pipeline;  // session's
   std::vector<Minute> minutes;
   std::vector<double> rss_samples_;
   double sum_sq_ = 0.0, max_error_m_ = 0.0;
   std::size_t poses_ = 0;
 
  private:
-  void Consume(bool finish) {
-    if (finish) {
-      pipeline.Finish(&results_);
-    } else {
-      pipeline.Process(&results_);
+  // Hybrid mode: the cells the added scans reach outside the prior's.
+  void CountAdded(const hylo::odometry::ScanResult& r) {
+    if (!hybrid_ || !r.map_updated || pipeline.map().run_size() == 0) return;
+    for (const Eigen::Vector3f& p : r.registered_points_map) {
+      const Eigen::Vector3f p_site = (T_site_map_ * p.cast<double>()).cast<float>();
+      const int64_t cell = Cell(p_site);
+      if (touched_.insert(cell).second && prior_cells_.count(cell) == 0) ++outside_prior_;
     }
-    for (const hylo::estimation::ScanResult& r : results_) {
-      if (!hybrid_ || !r.map_updated || pipeline.map().run_size() == 0) continue;
-      for (const Eigen::Vector3f& p : r.registered_points_map) {
-        const Eigen::Vector3f p_site = (T_site_map_ * p.cast<double>()).cast<float>();
-        const int64_t cell = Cell(p_site);
-        if (touched_.insert(cell).second && prior_cells_.count(cell) == 0) ++outside_prior_;
-      }
-    }
-    results_.clear();
-    for (const hylo::estimation::NavState& x : pipeline.TakeFinalizedStates()) Score(x);
   }
 
   void Score(const hylo::estimation::NavState& x) {
@@ -174,7 +174,6 @@ class HourSink : public hylo::sim::SessionSink {
   Eigen::Isometry3d T_site_map_;
   const std::unordered_set<int64_t>& prior_cells_;
   bool hybrid_;
-  std::vector<hylo::estimation::ScanResult> results_;
   std::deque<hylo::evaluation::TimedPose> truth_;
   std::unordered_set<int64_t> touched_;
   std::size_t outside_prior_ = 0;
@@ -243,7 +242,7 @@ int main(int argc, char** argv) {
   for (const std::string run_mode : {"localization", "hybrid"}) {
     if (mode != "both" && mode != run_mode) continue;
     const bool hybrid = run_mode == "hybrid";
-    estimation::OdometryPipelineOptions options = testing::PipelineOptionsFor(sim_options);
+    odometry::OdometryPipelineOptions options = testing::PipelineOptionsFor(sim_options);
     options.estimator.backend = chosen;
     options.localization.update_after_s = hybrid ? 10.0 : -1.0;
     options.output.dense_map_voxel_m = hybrid ? 1.0 : 0.0;  // the added area, in 1 m cells

@@ -8,10 +8,11 @@
 
 #include <cmath>
 
-#include "hylo/estimation/odometry_pipeline.h"
 #include "hylo/logs/log_reader.h"
 #include "hylo/logs/scan_folder.h"
 #include "hylo/mapping/prior_map.h"
+#include "hylo/odometry/odometry_pipeline.h"
+#include "hylo/run/session.h"
 #include "test_data.h"
 
 namespace hylo::estimation {
@@ -52,9 +53,7 @@ TEST_P(BalmLocalization, OddScansInAMapOfTheEvenScans) {
     }
   }
   ASSERT_GE(odd.size(), 9u);
-  const mapping::PriorMap prior = mapping::BuildPriorMap(map_world, mapping::PriorMapOptions());
-
-  OdometryPipelineOptions options;
+  odometry::OdometryPipelineOptions options;
   options.imu.enabled = false;
   options.preprocess.scan_voxel_m = 0.3;
   // Odd scans are 1 s apart and the hand-held sensor turns up to ~60 deg in that time.
@@ -66,30 +65,26 @@ TEST_P(BalmLocalization, OddScansInAMapOfTheEvenScans) {
   // prediction (a wider yaw sweep), then refined by the usual update.
   options.localization.lost_after_scans = 1;
   options.localization.icp.yaw_range_deg = 45.0;
-  OdometryPipeline pipeline(options);
-  pipeline.SetPriorMap(prior.points_local);
+  run::Session session(options);
   const io::StampedPose* first = PoseAt(reference, odd.front().t_ns);
   ASSERT_NE(first, nullptr);
-  Eigen::Isometry3d guess = mapping::PoseToLocal(first->T_world_body(), prior.origin_world);
-  guess.translation() += Eigen::Vector3d(0.8, -0.6, 0.1);
-  guess.linear() = Eigen::AngleAxisd(10.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()) *
-                   guess.linear();
-  pipeline.SetInitialGuess(guess);
+  Eigen::Isometry3d guess_world = first->T_world_body();
+  guess_world.translation() += Eigen::Vector3d(0.8, -0.6, 0.1);
+  guess_world.linear() = Eigen::AngleAxisd(10.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()) *
+                         guess_world.linear();
+  session.SetPriorMap(map_world, mapping::PriorMapOptions(), guess_world);
 
-  std::vector<ScanResult> results;
-  for (LidarScan& scan : odd) {
-    pipeline.AddScan(std::move(scan));
-    pipeline.Process(&results);
-  }
-  pipeline.Process(&results, true);
-  ASSERT_NE(pipeline.status(), OdometryPipeline::Status::kFailed) << pipeline.message();
+  for (LidarScan& scan : odd) session.AddScan(std::move(scan));
+  session.Finish();
+  ASSERT_FALSE(session.failed()) << session.pipeline().message();
+  const std::vector<odometry::ScanResult>& results = session.results();
   ASSERT_EQ(results.size(), odd.size());
   double sum_sq_m = 0.0, sum_sq_deg = 0.0;
   for (std::size_t i = 0; i < results.size(); ++i) {
     const io::StampedPose* ref = PoseAt(reference, results[i].t_ns);
     ASSERT_NE(ref, nullptr);
     const Eigen::Isometry3d est = mapping::PoseToWorld(
-        Eigen::Isometry3d(results[i].state.T_map_lidar().Matrix()), prior.origin_world);
+        Eigen::Isometry3d(results[i].state.T_map_lidar().Matrix()), session.origin_world());
     const Eigen::Isometry3d truth = ref->T_world_body();
     const double e = (est.translation() - truth.translation()).norm();
     const double a = Eigen::AngleAxisd(est.linear().transpose() * truth.linear()).angle() *

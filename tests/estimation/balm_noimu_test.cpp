@@ -5,9 +5,10 @@
 #include <cmath>
 
 #include "hylo/config/run_config.h"
-#include "hylo/estimation/odometry_pipeline.h"
 #include "hylo/logs/log_reader.h"
 #include "hylo/logs/scan_folder.h"
+#include "hylo/odometry/odometry_pipeline.h"
+#include "hylo/run/session.h"
 #include "test_data.h"
 #include "estimation/param_printers.h"
 
@@ -32,27 +33,26 @@ TEST_P(BalmScansNoImu, PosesStayWithinTwoCentimetresAndPointTwoDegreesOfTheRefer
   const std::string dir = hylo::testing::DataPath("balm_scans");
   const config::RunConfig run =
       config::LoadRunConfig(std::string(HYLO_SOURCE_DIR) + "/config/presets/handheld_noimu.yaml");
-  OdometryPipelineOptions options = run.PipelineOptions();
+  odometry::OdometryPipelineOptions options = run.PipelineOptions();
   ASSERT_FALSE(options.imu.enabled);
   options.estimator.backend = GetParam().backend;
-  OdometryPipeline pipeline(options);
+  run::Session session(options, run::SessionKeeps{true, false});
   logs::LogReadOptions read;
   read.imu_topic.clear();
   auto log = logs::OpenLog(dir, read);
   logs::LogMessage message;
-  std::vector<ScanResult> results;
   while (log->Next(&message)) {
     if (message.kind != logs::LogMessage::Kind::kScan) continue;
-    pipeline.AddScan(std::move(message.scan));
-    pipeline.Process(&results);
+    session.AddScan(std::move(message.scan));
   }
-  pipeline.Process(&results, true);
+  session.Finish();
+  const std::vector<odometry::ScanResult>& results = session.results();
   const std::vector<io::StampedPose> reference = logs::ReadScanFolderPoses(dir);
   ASSERT_GE(results.size(), 18u);
   std::size_t compared = 0;
   double sum_sq_m = 0.0, sum_sq_deg = 0.0;
   Eigen::Isometry3d T_ref_est = Eigen::Isometry3d::Identity();
-  for (const ScanResult& r : results) {
+  for (const odometry::ScanResult& r : results) {
     const io::StampedPose* ref = nullptr;
     for (const io::StampedPose& p : reference) {
       if (p.t_ns == r.t_ns) ref = &p;

@@ -5,6 +5,7 @@
 
 #include "hylo/logs/log_reader.h"
 #include "hylo/logs/scan_folder.h"
+#include "hylo/run/session.h"
 
 namespace hylo::testing {
 
@@ -28,33 +29,31 @@ double Quantile(std::vector<double> values, double q) {
   return values[std::min(index, values.size() - 1)];
 }
 
-StretchRun RunStretch(const std::string& dir, const estimation::OdometryPipelineOptions& options,
+StretchRun RunStretch(const std::string& dir, const odometry::OdometryPipelineOptions& options,
                       int stride, std::size_t max_scans) {
-  estimation::OdometryPipeline pipeline(options);
+  run::Session session(options, run::SessionKeeps{true, false});
   logs::LogReadOptions read;
   read.imu_topic.clear();
   auto log = logs::OpenLog(dir, read);
   logs::LogMessage message;
   StretchRun run;
-  std::vector<estimation::NavState> finalized;
   std::size_t seen = 0, fed = 0;
   while (log->Next(&message) && (max_scans == 0 || fed < max_scans)) {
     if (message.kind != logs::LogMessage::Kind::kScan) continue;
     if (seen++ % static_cast<std::size_t>(stride) != 0) continue;
     ++fed;
-    pipeline.AddScan(std::move(message.scan));
-    pipeline.Process(&run.results);
-    for (estimation::NavState& x : pipeline.TakeFinalizedStates()) finalized.push_back(x);
+    session.AddScan(std::move(message.scan));
   }
-  pipeline.Finish(&run.results);
-  for (estimation::NavState& x : pipeline.TakeFinalizedStates()) finalized.push_back(x);
+  session.Finish();
+  run.results = session.results();
+  const std::vector<estimation::NavState>& finalized = session.finalized();
 
   // The trajectory a run writes (trajectory.tum): each scan's finalized state.
   std::vector<evaluation::TimedPose> estimate, reference;
   for (const estimation::NavState& x : finalized) {
     estimate.push_back({x.t_ns, Eigen::Isometry3d(x.T_map_lidar().Matrix())});
   }
-  for (const estimation::ScanResult& r : run.results) {
+  for (const odometry::ScanResult& r : run.results) {
     run.cpu_ms.push_back(r.cpu_ms);
     if (r.update.robust.attempts > 1) ++run.retried_scans;
     if (r.update.robust.attempts > 0 && !r.update.robust.passed) ++run.unchecked_scans;

@@ -10,6 +10,7 @@
 #include "hylo/evaluation/trajectory_metrics.h"
 #include "hylo/mapping/prior_map.h"
 #include "hylo/registration/voxel_filter.h"
+#include "hylo/run/session.h"
 #include "hylo/sim/scenario_simulator.h"
 #include "hylo/sim_io/scenario_writer.h"
 
@@ -17,7 +18,7 @@ namespace hylo::testing {
 namespace {
 
 using estimation::Estimator;
-using estimation::OdometryPipeline;
+using odometry::OdometryPipeline;
 using evaluation::TimedPose;
 
 constexpr double kDeg = M_PI / 180.0;
@@ -51,34 +52,25 @@ struct TruthTrack : sim::SessionSink {
 // Finalized poses go back to the world frame (a prior map's local origin added).
 class PipelineRun : public sim::SessionSink {
  public:
-  explicit PipelineRun(const estimation::OdometryPipelineOptions& options) : pipeline(options) {}
-  void OnImu(const ImuSample& s) override { pipeline.AddImu(s); }
-  void OnScan(const LidarScan& s) override {
-    pipeline.AddScan(s);
-    Consume(false);
-  }
+  explicit PipelineRun(const odometry::OdometryPipelineOptions& options)
+      : session(options, run::SessionKeeps{true, false}), pipeline(session.pipeline()) {}
+  void OnImu(const ImuSample& s) override { session.AddImu(s); }
+  void OnScan(const LidarScan& s) override { session.AddScan(s); }
   void OnTruth(const sim::TruthSample&) override {}
-  void Finish() { Consume(true); }
-
-  OdometryPipeline pipeline;
-  std::vector<estimation::ScanResult> results;
-  std::vector<TimedPose> finalized;          ///< world frame
-  std::vector<estimation::NavState> states;  ///< the same states, whole (map frame)
-  Eigen::Vector3d origin_world = Eigen::Vector3d::Zero();
-
- private:
-  void Consume(bool finish) {
-    if (finish) {
-      pipeline.Finish(&results);
-    } else {
-      pipeline.Process(&results);
-    }
-    for (const estimation::NavState& x : pipeline.TakeFinalizedStates()) {
+  void Finish() {
+    session.Finish();
+    for (const estimation::NavState& x : states) {
       finalized.push_back(
           {x.t_ns, mapping::PoseToWorld(Eigen::Isometry3d(x.T_map_imu().Matrix()), origin_world)});
-      states.push_back(x);
     }
   }
+
+  run::Session session;
+  OdometryPipeline& pipeline;  ///< session's
+  const std::vector<odometry::ScanResult>& results = session.results();
+  const std::vector<estimation::NavState>& states = session.finalized();  ///< map frame
+  std::vector<TimedPose> finalized;  ///< the same states, world frame
+  Eigen::Vector3d origin_world = Eigen::Vector3d::Zero();
 };
 
 // The mapping drive's scans placed at their true poses (each return at its own time, to
@@ -122,7 +114,7 @@ ModeFigures Score(const PipelineRun& run, const std::vector<TimedPose>& truth,
   ModeFigures f;
   f.ran = true;
   std::vector<double> cpu;
-  for (const estimation::ScanResult& r : run.results) {
+  for (const odometry::ScanResult& r : run.results) {
     cpu.push_back(r.cpu_ms);
     f.not_applied += r.update.applied ? 0 : 1;
     f.degenerate += r.update.degenerate ? 1 : 0;
@@ -192,7 +184,7 @@ void WriteUpdates(const std::string& path, const PipelineRun& run) {
   std::ofstream out(path);
   if (run.results.empty()) return;
   const int64_t t0_ns = run.results.front().t_ns;
-  for (const estimation::ScanResult& r : run.results) {
+  for (const odometry::ScanResult& r : run.results) {
     const estimation::UpdateSummary& u = r.update;
     out << 1e-9 * double(r.t_ns - t0_ns) << ' ' << u.num_matches << ' ' << u.num_points << ' '
         << u.applied << ' ' << u.degenerate << ' ' << u.min_translation_information << ' '
@@ -205,8 +197,8 @@ void WriteUpdates(const std::string& path, const PipelineRun& run) {
 // failed, attempt by attempt.
 void WriteEvents(const std::string& path, const PipelineRun& run) {
   std::ofstream out(path);
-  for (const estimation::LocalizationEvent& e : run.pipeline.events()) {
-    out << 1e-9 * double(e.t_ns) << ' ' << estimation::ToString(e.kind) << ": " << e.message
+  for (const localization::LocalizationEvent& e : run.pipeline.events()) {
+    out << 1e-9 * double(e.t_ns) << ' ' << localization::ToString(e.kind) << ": " << e.message
         << '\n';
   }
 }
@@ -217,9 +209,9 @@ std::string TracePath(const ScenarioRunOptions& options, uint64_t number, const 
          estimation::ToString(run.backend) + "_" + mode + ".txt";
 }
 
-estimation::OdometryPipelineOptions OptionsFor(const config::RunConfig& config,
+odometry::OdometryPipelineOptions OptionsFor(const config::RunConfig& config,
                                                Estimator::Backend backend, const Variant& variant) {
-  estimation::OdometryPipelineOptions o = config.PipelineOptions();
+  odometry::OdometryPipelineOptions o = config.PipelineOptions();
   o.estimator.backend = backend;
   if (variant.adjust) variant.adjust(&o);
   return o;

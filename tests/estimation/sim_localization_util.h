@@ -21,27 +21,26 @@
 
 namespace hylo::testing {
 
-/// Streams a session into a pipeline (configured by the caller, e.g. with a prior map) and
-/// folds each result's registered scan into a dense map (one point per dense_voxel_m voxel).
+/// Streams a session into a session of the pipeline (configured by the caller, e.g. with a
+/// prior map), which folds each result's registered scan into its dense map.
 class LocalizationSink : public sim::SessionSink {
  public:
-  LocalizationSink(const estimation::OdometryPipelineOptions& options, float dense_voxel_m)
-      : pipeline(options), dense(dense_voxel_m) {}
+  explicit LocalizationSink(const odometry::OdometryPipelineOptions& options)
+      : session(options), pipeline(session.pipeline()) {}
 
-  void OnImu(const ImuSample& s) override { pipeline.AddImu(s); }
+  void OnImu(const ImuSample& s) override { session.AddImu(s); }
   void OnScan(const LidarScan& s) override {
     if (before_scan) before_scan(scans_seen_, &pipeline);
     ++scans_seen_;
-    pipeline.AddScan(s);
-    Consume(false);
+    session.AddScan(s);
   }
   void OnTruth(const sim::TruthSample& t) override { truth.push_back({t.t_ns, t.T_map_imu}); }
-  void Finish() { Consume(true); }
+  void Finish() { session.Finish(); }
 
   /// T_map_imu per processed scan, finalized (the trajectory a run writes).
   std::vector<evaluation::TimedPose> Estimate() const {
     std::vector<evaluation::TimedPose> estimate;
-    for (const auto& x : finalized) {
+    for (const auto& x : session.finalized()) {
       estimate.push_back({x.t_ns, Eigen::Isometry3d(x.T_map_imu().Matrix())});
     }
     return estimate;
@@ -49,36 +48,20 @@ class LocalizationSink : public sim::SessionSink {
   /// T_map_imu per processed scan, live (the odometry stream).
   std::vector<evaluation::TimedPose> LiveEstimate() const {
     std::vector<evaluation::TimedPose> estimate;
-    for (const auto& r : results) {
+    for (const auto& r : session.results()) {
       estimate.push_back({r.t_ns, Eigen::Isometry3d(r.state.T_map_imu().Matrix())});
     }
     return estimate;
   }
+  const std::vector<odometry::ScanResult>& results() const { return session.results(); }
 
-  estimation::OdometryPipeline pipeline;
-  std::vector<estimation::ScanResult> results;  // registered points moved into `dense`
-  std::vector<estimation::NavState> finalized;  // the back-end's finalized states
-  std::vector<evaluation::TimedPose> truth;     // T_site_imu at the IMU rate
-  registration::UniformSampler dense;
+  run::Session session;
+  odometry::OdometryPipeline& pipeline;       // session's
+  std::vector<evaluation::TimedPose> truth;  // T_site_imu at the IMU rate
   /// Called before the scan with this index enters the pipeline (e.g. a relocalization).
-  std::function<void(std::size_t, estimation::OdometryPipeline*)> before_scan;
+  std::function<void(std::size_t, odometry::OdometryPipeline*)> before_scan;
 
  private:
-  void Consume(bool finish) {
-    const std::size_t first = results.size();
-    if (finish) {
-      pipeline.Finish(&results);
-    } else {
-      pipeline.Process(&results);
-    }
-    for (estimation::NavState& x : pipeline.TakeFinalizedStates()) finalized.push_back(x);
-    for (std::size_t i = first; i < results.size(); ++i) {
-      auto& points = results[i].registered_points_map;
-      if (!points.empty()) dense.Add(points);
-      PointCloud().swap(points);
-    }
-  }
-
   std::size_t scans_seen_ = 0;
 };
 
@@ -91,13 +74,13 @@ struct SimPrior {
 };
 
 inline SimPrior BuildSimPrior(const sim::SimulationOptions& sim_options, const sim::Site& site) {
-  estimation::OdometryPipelineOptions options = PipelineOptionsFor(sim_options);
+  odometry::OdometryPipelineOptions options = PipelineOptionsFor(sim_options);
   options.output.dense_map_voxel_m = 0.1;
-  LocalizationSink sink(options, 0.1f);
+  LocalizationSink sink(options);
   sim::SessionSimulator(sim_options, site, sim::SessionId::kA).Run(&sink);
   sink.Finish();
   SimPrior prior;
-  prior.points_map = sink.dense.points();
+  prior.points_map = sink.session.dense_map();
   const std::vector<evaluation::TimedPose> estimate = sink.Estimate();
   if (estimate.empty()) return prior;
   // The map's place on the site fitted over the whole run, not read off the first pose: a

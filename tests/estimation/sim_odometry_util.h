@@ -5,15 +5,16 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/odometry/odometry_pipeline.h"
+#include "hylo/run/session.h"
 #include "hylo/evaluation/trajectory_metrics.h"
 #include "hylo/sim/simulator.h"
 
 namespace hylo::testing {
 
 /// Pipeline settings matching the simulator's sensors (extrinsic, IMU noise, gravity).
-inline estimation::OdometryPipelineOptions PipelineOptionsFor(const sim::SimulationOptions& s) {
-  estimation::OdometryPipelineOptions o;
+inline odometry::OdometryPipelineOptions PipelineOptionsFor(const sim::SimulationOptions& s) {
+  odometry::OdometryPipelineOptions o;
   o.imu.gravity_mps2 = s.imu.gravity_mps2;
   o.imu.noise.accel_noise_density = s.imu.accel_noise_density;
   o.imu.noise.gyro_noise_density = s.imu.gyro_noise_density;
@@ -27,64 +28,58 @@ inline estimation::OdometryPipelineOptions PipelineOptionsFor(const sim::Simulat
 }
 
 struct SimRun {
-  std::vector<estimation::ScanResult> results;
+  std::vector<odometry::ScanResult> results;
   std::vector<evaluation::TimedPose> estimate;       ///< finalized T_map_imu per scan end
   std::vector<evaluation::TimedPose> live_estimate;  ///< live T_map_imu per scan end
   std::vector<evaluation::TimedPose> reference;      ///< true T_map_imu at the IMU rate
   evaluation::AteResult ate;       ///< of the finalized states (the trajectory a run writes)
   evaluation::AteResult live_ate;  ///< of the live states (what odometry published)
-  estimation::PipelineCounters counters;
+  odometry::PipelineCounters counters;
   std::size_t map_points = 0;
   bool failed = false;
   std::string message;
 };
 
-/// Streams a session from the simulator straight into a pipeline (nothing but the truth is
-/// kept in memory), in the simulator's arrival order, and scores the trajectory.
+/// Streams a session from the simulator straight into a session of the pipeline (nothing but
+/// the truth is kept in memory), in the simulator's arrival order, and scores the trajectory.
 class PipelineSink : public sim::SessionSink {
  public:
-  explicit PipelineSink(const estimation::OdometryPipelineOptions& options)
-      : pipeline_(options) {}
-  void OnImu(const ImuSample& s) override { pipeline_.AddImu(s); }
-  void OnScan(const LidarScan& s) override {
-    pipeline_.AddScan(s);
-    pipeline_.Process(&run_.results);
-    TakeFinalized();
-  }
+  explicit PipelineSink(const odometry::OdometryPipelineOptions& options)
+      : session_(options, run::SessionKeeps{true, false}) {}
+  void OnImu(const ImuSample& s) override { session_.AddImu(s); }
+  void OnScan(const LidarScan& s) override { session_.AddScan(s); }
   void OnTruth(const sim::TruthSample& t) override {
     run_.reference.push_back({t.t_ns, t.T_map_imu});
   }
   SimRun Finish() {
-    pipeline_.Finish(&run_.results);
-    TakeFinalized();
-    run_.failed = pipeline_.status() == estimation::OdometryPipeline::Status::kFailed;
-    run_.message = pipeline_.message();
-    run_.counters = pipeline_.counters();
-    run_.map_points = pipeline_.map().Size();
-    for (const estimation::ScanResult& r : run_.results) {
+    session_.Finish();
+    const odometry::OdometryPipeline& pipeline = session_.pipeline();
+    run_.results = session_.results();
+    for (const estimation::NavState& x : session_.finalized()) {
+      run_.estimate.push_back({x.t_ns, Eigen::Isometry3d(x.T_map_imu().Matrix())});
+    }
+    run_.failed = session_.failed();
+    run_.message = pipeline.message();
+    run_.counters = pipeline.counters();
+    run_.map_points = pipeline.map().Size();
+    for (const odometry::ScanResult& r : run_.results) {
       run_.live_estimate.push_back({r.t_ns, Eigen::Isometry3d(r.state.T_map_imu().Matrix())});
     }
     run_.ate = evaluation::ComputeAte(run_.estimate, run_.reference);
     run_.live_ate = evaluation::ComputeAte(run_.live_estimate, run_.reference);
     return std::move(run_);
   }
-  const estimation::OdometryPipeline& pipeline() const { return pipeline_; }
+  const odometry::OdometryPipeline& pipeline() const { return session_.pipeline(); }
 
  private:
-  void TakeFinalized() {
-    for (const estimation::NavState& x : pipeline_.TakeFinalizedStates()) {
-      run_.estimate.push_back({x.t_ns, Eigen::Isometry3d(x.T_map_imu().Matrix())});
-    }
-  }
-
-  estimation::OdometryPipeline pipeline_;
+  run::Session session_;
   SimRun run_;
 };
 
 /// Simulates session `session` of the site built from `sim_options` and runs the pipeline.
 inline SimRun RunSimulatedSession(const sim::SimulationOptions& sim_options,
                                   sim::SessionId session,
-                                  const estimation::OdometryPipelineOptions& options,
+                                  const odometry::OdometryPipelineOptions& options,
                                   sim::SessionSummary* summary = nullptr) {
   const sim::Site site = sim::BuildSite(sim_options.seed, sim_options.terrain);
   const sim::SessionSimulator simulator(sim_options, site, session);

@@ -49,13 +49,13 @@ const SimPrior& SharedPrior() {
 evaluation::AteResult LocalizeSessionB(Backend backend, double log_offset_s,
                                        double config_offset_s) {
   const sim::SimulationOptions sim_options = SimOptions(log_offset_s);
-  estimation::OdometryPipelineOptions o = PipelineOptionsFor(sim_options);
+  odometry::OdometryPipelineOptions o = PipelineOptionsFor(sim_options);
   o.estimator.backend = backend;
   o.estimator.sliding_window.max_solver_time_s = 10.0;  // no wall-time cut (loaded machines)
   o.localization.update_after_s = -1.0;
   o.lidar.time_offset_s = config_offset_s;
   const sim::SessionSimulator simulator(sim_options, SharedSite(), sim::SessionId::kB);
-  LocalizationSink sink(o, 1.0f);
+  LocalizationSink sink(o);
   sink.pipeline.SetPriorMap(SharedPrior().points_map);
   Eigen::Isometry3d guess = SharedPrior().T_site_map.inverse() * simulator.trajectory().PoseAt(0);
   guess.translation() += Eigen::Vector3d(0.2, -0.2, 0.0);
@@ -63,7 +63,7 @@ evaluation::AteResult LocalizeSessionB(Backend backend, double log_offset_s,
   sink.pipeline.SetInitialGuess(guess);
   simulator.Run(&sink);
   sink.Finish();
-  EXPECT_NE(sink.pipeline.status(), estimation::OdometryPipeline::Status::kFailed)
+  EXPECT_NE(sink.pipeline.status(), odometry::OdometryPipeline::Status::kFailed)
       << sink.pipeline.message();
   std::vector<evaluation::TimedPose> estimate_site = sink.Estimate();
   for (evaluation::TimedPose& p : estimate_site) {
@@ -96,7 +96,7 @@ INSTANTIATE_TEST_SUITE_P(Backends, SimTimeOffset,
                          [](const auto& info) { return estimation::ToString(info.param); });
 
 TEST(PipelineLidarOptions, TheOffsetIsValidatedAndConvertedToNanoseconds) {
-  estimation::PipelineLidarOptions o;
+  odometry::PipelineLidarOptions o;
   std::string why;
   EXPECT_TRUE(o.IsValid(&why));
   for (const double bad : {1.5, -2.0, std::nan(""), HUGE_VAL}) {

@@ -22,7 +22,7 @@ namespace hylo::testing {
 namespace {
 
 using estimation::Estimator;
-using estimation::LocalizationEvent;
+using localization::LocalizationEvent;
 
 constexpr double kDegToRad = M_PI / 180.0;
 
@@ -97,15 +97,15 @@ SessionRun RunSessionB(const std::string& map_path, const sim::SimulationOptions
                        Estimator::Backend backend, double update_after_s,
                        const Eigen::Isometry3d& guess,
                        const mapping::PriorMapOptions& prior_options = {}) {
-  estimation::OdometryPipelineOptions options = PipelineOptionsFor(sim_options);
+  odometry::OdometryPipelineOptions options = PipelineOptionsFor(sim_options);
   options.estimator.backend = backend;
   options.localization.update_after_s = update_after_s;
   SessionRun run;
-  run.sink = std::make_unique<LocalizationSink>(options, 0.1f);
+  run.sink = std::make_unique<LocalizationSink>(options);
   run.prior = run::LoadPriorMap(map_path, prior_options, guess, &run.sink->pipeline);
   sim::SessionSimulator(sim_options, SharedSite(), sim::SessionId::kB).Run(run.sink.get());
   run.sink->Finish();
-  if (!run.sink->finalized.empty()) {
+  if (!run.sink->session.finalized().empty()) {
     run.ate = evaluation::ComputeAte(run.sink->Estimate(), run.sink->truth);
   }
   return run;
@@ -126,7 +126,7 @@ TEST_P(TiledLocalization, GivesTheUntiledMapsTrajectory) {
   const SessionRun tiled =
       RunSessionB(SharedFiles().tiled, sim_options, GetParam(), -1.0, guess, window);
   for (const SessionRun* run : {&whole, &tiled}) {
-    ASSERT_NE(run->sink->pipeline.status(), estimation::OdometryPipeline::Status::kFailed)
+    ASSERT_NE(run->sink->pipeline.status(), odometry::OdometryPipeline::Status::kFailed)
         << run->sink->pipeline.message();
     ASSERT_TRUE(run->ate.ok) << run->ate.message;
   }
@@ -138,11 +138,11 @@ TEST_P(TiledLocalization, GivesTheUntiledMapsTrajectory) {
       "[%s] ATE whole map %.5f m, tiled %.5f m (rotation %.4f / %.4f deg); %zu scans / "
       "%zu; tiles loaded %zu, unloaded %zu, at most %zu tiles (%zu of %zu points) held\n",
       estimation::ToString(GetParam()).c_str(), whole.ate.rmse_m, tiled.ate.rmse_m,
-      whole.ate.rotation_rmse_deg, tiled.ate.rotation_rmse_deg, tiled.sink->results.size(),
-      whole.sink->results.size(), stats.tiles_loaded, stats.tiles_unloaded, stats.max_tiles_held,
+      whole.ate.rotation_rmse_deg, tiled.ate.rotation_rmse_deg, tiled.sink->results().size(),
+      whole.sink->results().size(), stats.tiles_loaded, stats.tiles_unloaded, stats.max_tiles_held,
       stats.max_points_held, whole.prior.num_kept);
   EXPECT_GT(tiled.ate.path_length_m, 100.0);
-  EXPECT_EQ(tiled.sink->results.size(), whole.sink->results.size());
+  EXPECT_EQ(tiled.sink->results().size(), whole.sink->results().size());
   // The tiles hold the same points and the search over them is exact; what differs is the
   // map beyond 60 m, and tiles arriving a scan later than the whole map had them: within 1 mm.
   EXPECT_NEAR(tiled.ate.rmse_m, whole.ate.rmse_m, 1e-3);
@@ -189,11 +189,11 @@ TEST(TiledLocalizationOffMap, AHoleInTheTilesIsCrossedInOdometryModeAndSaidSo) {
   const SessionRun run = RunSessionB(dir, EastwardB(), Estimator::Backend::kIeskf, -1.0,
                                      PerturbedStart(EastwardB(), 0.5, -0.5, 5.0));
   const auto& pipeline = run.sink->pipeline;
-  ASSERT_NE(pipeline.status(), estimation::OdometryPipeline::Status::kFailed) << pipeline.message();
+  ASSERT_NE(pipeline.status(), odometry::OdometryPipeline::Status::kFailed) << pipeline.message();
   std::vector<LocalizationEvent::Kind> kinds;
   for (const auto& e : pipeline.events()) {
     kinds.push_back(e.kind);
-    std::printf("event %s at %.1f s: %s\n", estimation::ToString(e.kind).c_str(),
+    std::printf("event %s at %.1f s: %s\n", localization::ToString(e.kind).c_str(),
                 1e-9 * static_cast<double>(e.t_ns - run.sink->truth.front().t_ns),
                 e.message.c_str());
   }
@@ -215,7 +215,7 @@ TEST(TiledLocalizationHybrid, AddedPointsAreWrittenAsTilesAndLoadedByTheNextSess
   options.duration_b_s = 40.0;
   const Eigen::Isometry3d guess = PerturbedStart(options, 0.5, -0.5, 5.0);
   const SessionRun first = RunSessionB(map_dir, options, Estimator::Backend::kIeskf, 5.0, guess);
-  ASSERT_NE(first.sink->pipeline.status(), estimation::OdometryPipeline::Status::kFailed);
+  ASSERT_NE(first.sink->pipeline.status(), odometry::OdometryPipeline::Status::kFailed);
   const mapping::MapManager& map = first.sink->pipeline.map();
   const std::size_t added = map.run_size() + map.windowed_out().size();
   ASSERT_GT(added, 100u);
@@ -229,7 +229,7 @@ TEST(TiledLocalizationHybrid, AddedPointsAreWrittenAsTilesAndLoadedByTheNextSess
   // The next session starts from the grown map: the layer moved into the map directory.
   std::filesystem::rename(dir + "/out/map_added", map_dir + "/map_added");
   const SessionRun second = RunSessionB(map_dir, options, Estimator::Backend::kIeskf, -1.0, guess);
-  ASSERT_NE(second.sink->pipeline.status(), estimation::OdometryPipeline::Status::kFailed);
+  ASSERT_NE(second.sink->pipeline.status(), odometry::OdometryPipeline::Status::kFailed);
   EXPECT_EQ(second.prior.num_kept, base.points + layer.points);
   ASSERT_TRUE(second.ate.ok);
   EXPECT_LE(second.ate.rmse_m, 0.03);

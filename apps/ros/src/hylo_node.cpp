@@ -4,23 +4,23 @@
 #include <stdexcept>
 
 #include "hylo/logs/ros_bridge.h"
-#include "hylo/registration/pose_guess.h"
+#include "hylo/localization/pose_guess.h"
 #include "hylo/run/prior_map_io.h"
 #include "ros_messages.h"
 
 namespace hylo::rosnode {
 namespace {
 
-using Status = estimation::OdometryPipeline::Status;
-using EventKind = estimation::LocalizationEvent::Kind;
+using Status = odometry::OdometryPipeline::Status;
+using EventKind = localization::LocalizationEvent::Kind;
 
 FrameNames FramesOf(const config::RunConfig& config) {
   return {config.output.map_frame, config.output.odom_frame, config.output.base_frame};
 }
 
-estimation::OdometryPipelineOptions PipelineOptionsFor(const config::RunConfig& config,
+odometry::OdometryPipelineOptions PipelineOptionsFor(const config::RunConfig& config,
                                                        const NodeParams& params) {
-  estimation::OdometryPipelineOptions options = config.PipelineOptions();
+  odometry::OdometryPipelineOptions options = config.PipelineOptions();
   if (params.registered_scan_voxel_m >= 0.0) {
     options.output.dense_map_voxel_m = params.registered_scan_voxel_m;
   }
@@ -41,7 +41,9 @@ HyloNode::HyloNode(ros::NodeHandle nh, ros::NodeHandle private_nh, const NodePar
       params_(params),
       config_(config::LoadRunConfig(params.config_path)),
       frames_(FramesOf(config_)),
-      pipeline_(PipelineOptionsFor(config_, params)),
+      // A live node keeps no results and no dense map: its memory stays flat.
+      session_(PipelineOptionsFor(config_, params), run::SessionKeeps{false, false}),
+      pipeline_(session_.pipeline()),
       input_(QueueOptionsFor(config_, params)),
       outputs_(private_nh_, frames_, params.outputs),
       convention_(config_.lidar.time_convention) {
@@ -60,7 +62,7 @@ HyloNode::HyloNode(ros::NodeHandle nh, ros::NodeHandle private_nh, const NodePar
       private_nh_.advertiseService("global_localize", &HyloNode::OnGlobalLocalize, this);
   save_map_srv_ = private_nh_.advertiseService("save_map", &HyloNode::OnSaveMap, this);
   ROS_INFO("hylo_node: %s, back-end %s, lidar %s, imu %s, frames %s -> %s -> %s",
-           localizing_ ? "localization in a prior map" : "SLAM", config_.BackendName().c_str(),
+           session_.localizing() ? "localization in a prior map" : "SLAM", config_.BackendName().c_str(),
            config_.lidar.topic.c_str(),
            config_.pipeline.imu.enabled ? config_.imu.topic.c_str() : "none", frames_.map.c_str(),
            frames_.odom.c_str(), frames_.base.c_str());
@@ -77,19 +79,17 @@ void HyloNode::LoadPriorMap() {
   }
   std::optional<Eigen::Isometry3d> T_world_imu;  // none: the whole map is searched
   try {
-    if (!guess.empty()) T_world_imu = registration::ParsePoseGuess(guess);
+    if (!guess.empty()) T_world_imu = localization::ParsePoseGuess(guess);
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(std::string("initial guess: ") + e.what());
   }
-  const mapping::PriorMap prior =
-      run::LoadPriorMap(params_.prior_map, config_.prior_map, T_world_imu, &pipeline_);
-  origin_world_ = prior.origin_world;
-  localizing_ = true;
-  outputs_.SetOrigin(origin_world_);
+  session_.LoadPriorMap(params_.prior_map, config_.prior_map, T_world_imu);
+  const mapping::PriorMap& prior = session_.prior();
+  outputs_.SetOrigin(session_.origin_world());
   outputs_.PublishMap(prior.points_local, 0);
   ROS_INFO("hylo_node: prior map %s, %zu points kept of %zu, origin (%.1f, %.1f, %.1f)",
-           params_.prior_map.c_str(), prior.num_kept, prior.num_input, origin_world_.x(),
-           origin_world_.y(), origin_world_.z());
+           params_.prior_map.c_str(), prior.num_kept, prior.num_input, prior.origin_world.x(),
+           prior.origin_world.y(), prior.origin_world.z());
 }
 
 void HyloNode::OnCloud(const sensor_msgs::PointCloud2::ConstPtr& msg) {
@@ -127,7 +127,7 @@ void HyloNode::OnImu(const sensor_msgs::Imu::ConstPtr& msg) {
 
 bool HyloNode::RequestRelocalization(const std::string& frame_id,
                                      const Eigen::Isometry3d& T_world_imu, std::string* why) {
-  if (!localizing_) {
+  if (!session_.localizing()) {
     *why = "no prior map (SLAM mode): nothing to relocalize against";
     return false;
   }
@@ -137,7 +137,7 @@ bool HyloNode::RequestRelocalization(const std::string& frame_id,
   }
   {
     std::lock_guard<std::mutex> lock(request_mutex_);
-    relocalization_request_ = mapping::PoseToLocal(T_world_imu, origin_world_);
+    relocalization_request_ = mapping::PoseToLocal(T_world_imu, session_.origin_world());
   }
   input_.Notify();
   return true;
@@ -237,15 +237,15 @@ void HyloNode::ServeRequests() {
 
 std::string HyloNode::SaveMap(const std::string& path) {
   const PointCloud points_map = pipeline_.map().Flatten();
-  run::WriteWorldCloud(path, points_map, origin_world_);
+  run::WriteWorldCloud(path, points_map, session_.origin_world());
   return "wrote " + std::to_string(points_map.size()) + " points to " + path;
 }
 
 void HyloNode::ReportEvents() {
-  const std::vector<estimation::LocalizationEvent>& events = pipeline_.events();
+  const std::vector<localization::LocalizationEvent>& events = pipeline_.events();
   for (; events_seen_ < events.size(); ++events_seen_) {
-    const estimation::LocalizationEvent& e = events[events_seen_];
-    last_event_ = estimation::ToString(e.kind) + ": " + e.message;
+    const localization::LocalizationEvent& e = events[events_seen_];
+    last_event_ = localization::ToString(e.kind) + ": " + e.message;
     ROS_INFO("hylo_node: %s", last_event_.c_str());
     if (e.kind == EventKind::kRelocalized || e.kind == EventKind::kRelocalizationFailed ||
         e.kind == EventKind::kInitialized || e.kind == EventKind::kInitializationFailed) {
@@ -254,11 +254,11 @@ void HyloNode::ReportEvents() {
   }
 }
 
-void HyloNode::PublishHealth(const estimation::ScanResult* last) {
+void HyloNode::PublishHealth(const odometry::ScanResult* last) {
   // Between scans (initialising, a stalled stream) the last scan's figures are repeated.
   HealthReport& report = health_;
   report.state = StateOf(pipeline_.status(), relocalization_pending_);
-  report.localizing = localizing_;
+  report.localizing = session_.localizing();
   report.backend = config_.BackendName();
   if (last != nullptr) {
     report.t_ns = last->t_ns;
@@ -279,31 +279,37 @@ void HyloNode::PublishHealth(const estimation::ScanResult* last) {
 void HyloNode::Run() {
   std::vector<ImuSample> imu;
   std::vector<LidarScan> scans;
-  std::vector<estimation::ScanResult> results;
+  // Each result is published as the session produces it; the last one feeds the health topic.
+  std::optional<odometry::ScanResult> last;
+  std::size_t published = 0;
+  session_.OnResult([&](const odometry::ScanResult& r) {
+    outputs_.PublishScan(r);
+    last = r;
+    PointCloud().swap(last->registered_points_map);  // published; the health needs none
+    ++published;
+  });
   last_health_ = ros::WallTime::now();
   while (ros::ok()) {
     imu.clear();
     scans.clear();
     if (!input_.Pop(&imu, &scans, std::chrono::milliseconds(100))) break;
     ServeRequests();
-    results.clear();
+    published = 0;
     // A failed pipeline (see ~health) takes no more data: its queue would only grow.
-    if (pipeline_.status() != Status::kFailed) {
-      for (const auto& sample : imu) pipeline_.AddImu(sample);
-      for (auto& scan : scans) pipeline_.AddScan(std::move(scan));
-      pipeline_.Process(&results);
+    if (!session_.failed()) {
+      for (const auto& sample : imu) session_.AddImu(sample);
+      for (auto& scan : scans) session_.AddScan(std::move(scan));
     }
-    for (const estimation::ScanResult& r : results) outputs_.PublishScan(r);
-    if (!results.empty() && outputs_.MapDue(results.back().t_ns, pipeline_.map().Size())) {
-      outputs_.PublishMap(pipeline_.map().Flatten(), results.back().t_ns);
+    if (published > 0 && outputs_.MapDue(last->t_ns, pipeline_.map().Size())) {
+      outputs_.PublishMap(pipeline_.map().Flatten(), last->t_ns);
     }
     ReportEvents();
     if (pipeline_.status() == Status::kFailed && !failure_reported_) {
       ROS_ERROR("hylo_node: the pipeline stopped: %s", pipeline_.message().c_str());
       failure_reported_ = true;
     }
-    if (!results.empty() || (ros::WallTime::now() - last_health_).toSec() >= 1.0) {
-      PublishHealth(results.empty() ? nullptr : &results.back());
+    if (published > 0 || (ros::WallTime::now() - last_health_).toSec() >= 1.0) {
+      PublishHealth(published > 0 ? &*last : nullptr);
     }
   }
   input_.Close();

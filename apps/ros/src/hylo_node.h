@@ -25,7 +25,8 @@
 
 #include "health.h"
 #include "hylo/config/run_config.h"
-#include "hylo/estimation/odometry_pipeline.h"
+#include "hylo/odometry/odometry_pipeline.h"
+#include "hylo/run/session.h"
 #include "input_queue.h"
 #include "node_outputs.h"
 #include "node_params.h"
@@ -59,7 +60,7 @@ class HyloNode {
   /// Worker side: pending relocalization and save-map requests.
   void ServeRequests();
   void ReportEvents();
-  void PublishHealth(const estimation::ScanResult* last);
+  void PublishHealth(const odometry::ScanResult* last);
   /// Writes the current map (world frame) to `path`; returns a one-line summary.
   std::string SaveMap(const std::string& path);
 
@@ -67,9 +68,8 @@ class HyloNode {
   NodeParams params_;
   config::RunConfig config_;
   FrameNames frames_;
-  estimation::OdometryPipeline pipeline_;
-  Eigen::Vector3d origin_world_ = Eigen::Vector3d::Zero();  ///< prior map's local origin
-  bool localizing_ = false;
+  run::Session session_;  ///< the pipeline and the prior map's local origin
+  odometry::OdometryPipeline& pipeline_;  ///< session_'s
   InputQueue input_;
   NodeOutputs outputs_;
   ros::Subscriber cloud_sub_, imu_sub_, initial_pose_sub_;
