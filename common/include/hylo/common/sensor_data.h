@@ -1,6 +1,6 @@
 #pragma once
 // The two measurements every part of hylo exchanges: an inertial sample and a lidar sweep.
-// Readers (apps/io), the simulator (sim/), the ROS node and the estimators all speak these, so
+// Readers (logs/, io/), the simulator (sim/), the ROS node and the estimators all speak these, so
 // they live at the bottom of the dependency graph. Time is int64 ns (common/time.h).
 
 #include <Eigen/Core>

@@ -59,7 +59,7 @@ struct TileInfo {
   std::size_t points = 0;  ///< points it holds
 };
 
-/// Where a tiled prior's tiles come from: files (apps/run), memory (tests).
+/// Where a tiled prior's tiles come from: files (run/), memory (tests).
 class TileSource {
  public:
   virtual ~TileSource() = default;

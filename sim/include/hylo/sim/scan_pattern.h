@@ -36,7 +36,7 @@ struct SensorSpec {
   double range_noise_m = 0.02;        ///< 1-sigma range noise, m
   double dropout_probability = 0.01;  ///< random missing returns, [0, 1)
   double min_incidence_cos = 0.03;    ///< grazing returns below this cosine are lost
-  std::string preset;                 ///< the configuration preset of config/ for this driver
+  std::string preset;                 ///< the driver's configuration preset (config/presets/)
   std::string time_convention;        ///< the driver's per-point time field (io names)
 
   /// The datasheet figures of `kind` (range noise is the nominal 1 sigma).

@@ -129,7 +129,7 @@ Scenario Eased(const Scenario& scenario, ScenarioFactor factor);
 struct SensorSheet {
   uint64_t scenario = 0;
   std::string sensor;                                          ///< ToString(SensorKind)
-  std::string preset;                                          ///< config/<preset>.yaml
+  std::string preset;                                          ///< config/presets/<preset>.yaml
   Eigen::Vector3d translation_m = Eigen::Vector3d::Zero();     ///< T_imu_lidar, m
   Eigen::Vector3d rotation_rpy_deg = Eigen::Vector3d::Zero();  ///< R = Rz(y) Ry(p) Rx(r), deg
   double imu_rate_hz = 200.0;

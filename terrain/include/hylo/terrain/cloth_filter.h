@@ -46,8 +46,8 @@ struct ClothFilterOptions {
                                             ///< (vertical gap x cos of the cloth's tilt, the
                                             ///< geometric point-to-cloth distance); false: the
                                             ///< vertical gap, as the reference release does,
-                                            ///< which grows as 1/cos(slope) on steep terrain
-                                            ///< (ISPRS mean total error 7.19 -> 6.59 %)
+                                            ///< which grows as 1/cos(slope), so that ground
+                                            ///< on steep terrain looks like objects
   bool slope_smoothing = true;  ///< paper ST: post-process movable particles on steep slopes
   double slope_height_threshold_m = 0.3;   ///< post-processing: a movable particle is pinned to
                                            ///< the surface when it continues a pinned neighbour
@@ -56,8 +56,8 @@ struct ClothFilterOptions {
                                            ///< settled cloth is closer than this to the surface
                                            ///< under it: a floating cloth on a slope, not one
                                            ///< spanning an object a storey or more high (a
-                                           ///< bridge deck), m (> 0; infinity = no test, as the
-                                           ///< reference release; ISPRS samp21 6.0 -> 1.9 %)
+                                           ///< bridge deck, ISPRS samp21), m (> 0; infinity =
+                                           ///< no test, as the reference release)
   int slope_min_region_particles = 50;     ///< post-processing only touches movable regions of
                                            ///< more than this many particles (>= 0)
   double convergence_threshold_m = 0.005;  ///< stop when no particle moved more than this in one

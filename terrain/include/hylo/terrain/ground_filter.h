@@ -33,29 +33,28 @@ std::string ToString(ClothHoleFill fill);
 /// Parses those names; false (and *fill untouched) for anything else.
 bool ParseClothHoleFill(const std::string& name, ClothHoleFill* fill);
 
-/// SMRF's defaults, chosen by leave-one-out on the 7 ISPRS samples the project holds (each
-/// sample scored with the setting chosen on the other six; tests/benchmarks/ground_loo_core.h,
-/// README): the setting chosen most often, c 1 m, s 0.1, w 24 m, et 0.5 m, es 1.25 (chosen for
-/// all seven). Mean total error 3.42 % left out and in-sample.
+/// SMRF's defaults for airborne-density clouds: c 1 m, s 0.1, w 24 m, et 0.5 m, es 1.25, the
+/// setting chosen by leave-one-out on the 7 ISPRS samples the project holds (each sample scored
+/// with the setting chosen on the other six; tests/benchmarks/ground_loo_core.h; figures in
+/// docs/results.md).
 SmrfOptions LeaveOneOutSmrfOptions();
 /// The cloth filter's, chosen the same way: GR 0.5 m, RI 6, nearest hole fill, the rest the
-/// paper's. 4.45 % left out, 4.25 % in-sample (the paper's defaults: 6.09 %).
+/// paper's.
 ClothFilterOptions LeaveOneOutCsfOptions();
 
 struct GroundFilterOptions {
   GroundMethod method = GroundMethod::kSmrf;         ///< the back-end that runs: SMRF, the
-                                                     ///< better of the two left out (3.42 %
-                                                     ///< against 4.45 %)
+                                                     ///< better of the two on the ISPRS
+                                                     ///< samples left out
   ClothFilterOptions csf = LeaveOneOutCsfOptions();  ///< used when method is kCsf
   SmrfOptions smrf = LeaveOneOutSmrfOptions();       ///< used when method is kSmrf
 
   /// For maps a ground robot builds (points every few centimetres, centimetre noise): the
   /// defaults with SMRF's elevation threshold at 0.10 m. Such maps resolve objects lower than
   /// the airborne threshold (fence bottoms, plinths, cable drums), which 0.5 m would call
-  /// ground: on the simulated substation (seed 1, quick) the defaults reach 7.6 % total error,
-  /// this 2.6 % (the cloth filter 6.6 %). Chosen over three simulated sites with each one left
-  /// out in turn (README, "Ground filter"); 0.05 m ties on the total error, 0.10 m keeps type I
-  /// four times lower on SLAM maps, whose passes disagree by a few centimetres.
+  /// ground. Chosen over simulated sites with each one left out in turn: 0.05 m ties on the
+  /// total error, 0.10 m keeps type I errors four times lower on SLAM maps, whose passes
+  /// disagree by a few centimetres (docs/terrain.md; figures in docs/results.md).
   static GroundFilterOptions ForRobotMaps();
 
   /// Checks both back-ends' options; *why names the section, the field, the value and the
