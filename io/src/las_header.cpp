@@ -156,8 +156,8 @@ void CheckScaleAndOffset(const std::string& path, const LasHeader& h) {
                                " (must be a finite, non-zero number)");
     }
     if (!std::isfinite(h.offset[k])) {
-      ThrowFileError(path, axis + " offset is " + FormatShortest(h.offset[k]) +
-                               " (must be finite)");
+      ThrowFileError(path,
+                     axis + " offset is " + FormatShortest(h.offset[k]) + " (must be finite)");
     }
   }
 }
@@ -184,14 +184,14 @@ std::string LazRefusal(const std::string& path) {
 LasHeader ReadLasHeader(const std::string& path, std::ifstream* in) {
   const uint64_t file_bytes = BytesLeft(in);
   uint8_t raw[kLasHeaderBytes14] = {};
-  in->read(reinterpret_cast<char*>(raw), static_cast<std::streamsize>(
-                                              std::min<uint64_t>(file_bytes, sizeof(raw))));
+  in->read(reinterpret_cast<char*>(raw),
+           static_cast<std::streamsize>(std::min<uint64_t>(file_bytes, sizeof(raw))));
   if (file_bytes < 4 || std::memcmp(raw, "LASF", 4) != 0) {
     ThrowFileError(path, "not a LAS file (no 'LASF' signature)");
   }
   if (file_bytes < kLasHeaderBytes12) {
-    ThrowFileError(path, "truncated: " + std::to_string(file_bytes) +
-                             " bytes, a LAS header alone has 227");
+    ThrowFileError(
+        path, "truncated: " + std::to_string(file_bytes) + " bytes, a LAS header alone has 227");
   }
   LasHeader h;
   h.version_major = raw[24];

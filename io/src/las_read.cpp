@@ -51,9 +51,8 @@ std::vector<std::string> FieldNames(const LasHeader& h) {
 CloudFileInfo InfoOf(const LasHeader& h) {
   CloudFileInfo info;
   info.format = "las";
-  info.encoding = "LAS " + std::to_string(h.version_major) + "." +
-                  std::to_string(h.version_minor) + " point format " +
-                  std::to_string(h.point_format);
+  info.encoding = "LAS " + std::to_string(h.version_major) + "." + std::to_string(h.version_minor) +
+                  " point format " + std::to_string(h.point_format);
   info.fields = FieldNames(h);
   info.points = static_cast<std::size_t>(h.points);
   return info;
@@ -90,8 +89,8 @@ class LasStream final : public CloudStream {
     for (std::size_t i = 0; i < n; ++i) {
       const uint8_t* r = buffer_.data() + i * step;
       for (int k = 0; k < 3; ++k) {
-        record[k] = internal::LasCoordinate(Get<int32_t>(r + 4 * k), header_.scale[k],
-                                            header_.offset[k]);
+        record[k] =
+            internal::LasCoordinate(Get<int32_t>(r + 4 * k), header_.scale[k], header_.offset[k]);
       }
       record[internal::kIntensity] = Get<uint16_t>(r + 12);
       record[internal::kLabel] = r[class_byte_] & class_mask_;

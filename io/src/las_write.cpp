@@ -36,7 +36,9 @@ void AppendText(std::vector<uint8_t>* out, const std::string& text, std::size_t 
   std::memcpy(out->data() + at, text.data(), std::min(size, text.size()));
 }
 
-void AppendZeros(std::vector<uint8_t>* out, std::size_t size) { out->resize(out->size() + size, 0); }
+void AppendZeros(std::vector<uint8_t>* out, std::size_t size) {
+  out->resize(out->size() + size, 0);
+}
 
 // The Extra Bytes VLR describing NormalX/Y/Z as float32 (data type 9).
 std::vector<uint8_t> NormalsVlr() {
@@ -72,15 +74,13 @@ void CheckWritable(const std::string& path, const CloudFile& cloud) {
                     ", LAS holds 0-65535");
     }
     if (!cloud.labels.empty() && (cloud.labels[i] < 0 || cloud.labels[i] > 255)) {
-      refuse(i, "has label " + std::to_string(cloud.labels[i]) +
-                    ", a LAS classification is 0-255");
+      refuse(i, "has label " + std::to_string(cloud.labels[i]) + ", a LAS classification is 0-255");
     }
   }
 }
 
 std::vector<uint8_t> Header(std::size_t points, std::size_t vlr_bytes, const internal::LasGrid& g,
-                            const Eigen::Vector3d& min, const Eigen::Vector3d& max,
-                            bool normals) {
+                            const Eigen::Vector3d& min, const Eigen::Vector3d& max, bool normals) {
   std::vector<uint8_t> h;
   AppendText(&h, "LASF", 4);
   AppendBytes<uint16_t>(&h, 0);  // file source ID: none assigned
@@ -186,7 +186,7 @@ void WriteLas(const std::string& path, const CloudFile& cloud) {
     body.push_back(0x11);  // return 1 of 1
     body.push_back(0);     // classification flags, scanner channel, scan direction, edge
     body.push_back(cloud.labels.empty() ? 0 : static_cast<uint8_t>(cloud.labels[i]));
-    body.push_back(0);  // user data
+    body.push_back(0);              // user data
     AppendZeros(&body, 2 + 2 + 8);  // scan angle, point source ID, GPS time
     if (normals) {
       for (int k = 0; k < 3; ++k) AppendBytes(&body, cloud.normals[i][k]);

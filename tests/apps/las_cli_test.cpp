@@ -31,8 +31,8 @@ io::CloudFile Site() {
   for (double x = 0; x <= 40; x += 0.25) {
     for (double y = 0; y <= 40; y += 0.25) {
       const bool roof = std::abs(x - 20) <= 3 && std::abs(y - 20) <= 3;
-      site.positions.push_back(kUtm + Eigen::Vector3d(x, y, 0.02 * x + (roof ? 4.0 : 0.0) +
-                                                                 noise(rng)));
+      site.positions.push_back(kUtm +
+                               Eigen::Vector3d(x, y, 0.02 * x + (roof ? 4.0 : 0.0) + noise(rng)));
       site.intensity.push_back(roof ? 200.f : 100.f);
       site.labels.push_back(0);
     }
@@ -120,9 +120,9 @@ TEST_F(LasCliTest, TileReadsALasMapAndWritesLasTiles) {
     EXPECT_NEAR(world.positions.front().x(), local.front().x() + index.origin_world.x(), 1e-3);
   }
   EXPECT_EQ(points, index.points);
-  EXPECT_NE(testing::RunHylo("tile --in " + Path("site.las") + " --out " + Path("t2") +
-                                 " --tile-format laz",
-                             "/dev/null", "/dev/null"),
+  EXPECT_NE(testing::RunHylo(
+                "tile --in " + Path("site.las") + " --out " + Path("t2") + " --tile-format laz",
+                "/dev/null", "/dev/null"),
             0);
   EXPECT_FALSE(fs::exists(Path("t2")));
 }

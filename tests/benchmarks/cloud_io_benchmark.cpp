@@ -43,8 +43,8 @@ double BestSeconds(F&& f) {
   for (int run = 0; run < 3; ++run) {
     const auto start = std::chrono::steady_clock::now();
     f();
-    best = std::min(best,
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    best = std::min(
+        best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   return best;
 }
@@ -62,7 +62,8 @@ void Measure(const std::string& section, const io::CloudFile& cloud, const std::
     while (stream->Next(std::size_t{1} << 20, &chunk)) {
     }
   });
-  if (read_points != cloud.positions.size()) std::fprintf(stderr, "%s: points lost\n", path.c_str());
+  if (read_points != cloud.positions.size())
+    std::fprintf(stderr, "%s: points lost\n", path.c_str());
   report->Set(section, "file_mb", mb);
   report->Set(section, "bytes_per_point", 1e6 * mb / points);
   report->Set(section, "write_mb_per_s", mb / write_s);

@@ -86,8 +86,8 @@ TEST(LasData, ReadableFilesGiveTheirHeadersCountAndEveryPointsRawCoordinates) {
     ASSERT_EQ(h.points, expected.points);
     const CloudFileInfo info = ReadCloudInfo(path);
     EXPECT_EQ(info.points, expected.points);
-    EXPECT_EQ(info.encoding, "LAS " + expected.version + " point format " +
-                                 std::to_string(expected.format));
+    EXPECT_EQ(info.encoding,
+              "LAS " + expected.version + " point format " + std::to_string(expected.format));
     const CloudFile cloud = ReadCloud(path);
     ASSERT_EQ(cloud.positions.size(), expected.points);
     ASSERT_EQ(cloud.intensity.size(), expected.points);
@@ -108,8 +108,8 @@ TEST(LasData, BrokenFilesAreRefusedInOneLine) {
   for (const auto& [name, fragment] : RefusedFiles()) {
     SCOPED_TRACE(name);
     const std::string path = Data(name);
-    for (const std::string& what : {ErrorOf([&] { ReadCloud(path); }),
-                                    ErrorOf([&] { ReadCloudInfo(path); })}) {
+    for (const std::string& what :
+         {ErrorOf([&] { ReadCloud(path); }), ErrorOf([&] { ReadCloudInfo(path); })}) {
       EXPECT_NE(what.find(path + ": "), std::string::npos) << what;
       EXPECT_NE(what.find(fragment), std::string::npos) << what;
       EXPECT_EQ(what.find('\n'), std::string::npos) << what;

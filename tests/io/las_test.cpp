@@ -97,13 +97,13 @@ TEST(Las, HeaderIsLas14Format6WithCountsBoundsAndTheNormalsDescribed) {
   EXPECT_EQ(b[25], 4);
   EXPECT_EQ(At<uint16_t>(b, 6) & 0x10, 0x10);  // formats 6-10 declare WKT
   EXPECT_EQ(At<uint16_t>(b, 94), 375);
-  EXPECT_EQ(At<uint32_t>(b, 100), 1u);           // the Extra Bytes VLR
+  EXPECT_EQ(At<uint32_t>(b, 100), 1u);  // the Extra Bytes VLR
   EXPECT_EQ(At<uint32_t>(b, 96), 375u + 54 + 3 * 192);
   EXPECT_EQ(b[104], 6);
   EXPECT_EQ(At<uint16_t>(b, 105), 30 + 12);
-  EXPECT_EQ(At<uint32_t>(b, 107), 0u);           // legacy count: 0 for format 6
+  EXPECT_EQ(At<uint32_t>(b, 107), 0u);  // legacy count: 0 for format 6
   EXPECT_EQ(At<uint64_t>(b, 247), 10u);
-  EXPECT_EQ(At<uint64_t>(b, 255), 10u);          // all first returns
+  EXPECT_EQ(At<uint64_t>(b, 255), 10u);  // all first returns
   EXPECT_EQ(b.size(), 375u + 54 + 3 * 192 + 10 * 42);
   const CloudFile read = ReadCloud(path);
   Eigen::Vector3d lo = read.positions[0], hi = read.positions[0];
@@ -227,9 +227,8 @@ TEST_P(LasFormats, ReadPositionsIntensityAndClassFromTheSpecOffsets) {
                                             {std::vector<uint8_t>(17, 0xAB)}));
   const CloudFile read = ReadCloud(path);
   ASSERT_EQ(read.positions.size(), 2u);
-  EXPECT_EQ(read.positions[0],
-            Eigen::Vector3d(123456 * 0.01 + 500000.0, -7 * 0.001 + 5000000.0,
-                            2147483647 * 0.0001 - 10.0));
+  EXPECT_EQ(read.positions[0], Eigen::Vector3d(123456 * 0.01 + 500000.0, -7 * 0.001 + 5000000.0,
+                                               2147483647 * 0.0001 - 10.0));
   EXPECT_EQ(read.positions[1].x(), -2147483648.0 * 0.01 + 500000.0);
   EXPECT_EQ(read.intensity, (std::vector<float>{65535.f, 0.f}));
   EXPECT_EQ(read.labels, (std::vector<int32_t>{cls, 2}));
