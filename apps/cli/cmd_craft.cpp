@@ -87,8 +87,10 @@ void AddCraftCommand(CLI::App& root) {
   auto* cmd = root.add_subcommand(
       "craft", "Clean a raw map: uniform sampling, then moving least squares (with normals)");
   static CraftArgs args;
-  cmd->add_option("--in", args.in_path, "raw map (PCD/PLY)")->required();
-  cmd->add_option("--out", args.out_path, "clean map to write (PCD/PLY), with normals")->required();
+  cmd->add_option("--in", args.in_path, "raw map (PCD/PLY/LAS)")->required();
+  cmd->add_option("--out", args.out_path,
+                  "clean map to write (PCD/PLY/LAS), with normals (LAS: as extra bytes "
+                  "NormalX/Y/Z)")->required();
   cmd->add_option("--voxel", args.options.voxel_size_m, "uniform sampling voxel edge, m (0 = off)")
       ->capture_default_str();
   cmd->add_option("--radius", args.options.mls_search_radius_m, "MLS search radius, m")

@@ -239,7 +239,7 @@ void AddEvalCommand(CLI::App& root) {
 
   auto* c2c = eval->add_subcommand("c2c", "Cloud-to-cloud distance of --cloud to --ref");
   static C2cArgs c2c_args;
-  c2c->add_option("--cloud", c2c_args.cloud, "cloud A (PCD/PLY/KITTI .bin)")->required();
+  c2c->add_option("--cloud", c2c_args.cloud, "cloud A (PCD/PLY/KITTI .bin/LAS)")->required();
   c2c->add_option("--ref", c2c_args.ref, "reference cloud B")->required();
   c2c->add_option("--max-dist", c2c_args.max_dist_m, "outlier threshold, m")
       ->check(CLI::PositiveNumber)

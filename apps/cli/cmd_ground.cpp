@@ -1,8 +1,10 @@
 // `hylo ground --in CLOUD --out-ground G --out-objects O [--method csf|smrf]`: ground / object
 // split by the simple morphological filter (Pingel et al. 2013) or the cloth simulation
-// filter (Zhang et al. 2016), and a JSON summary naming the method and its options.
+// filter (Zhang et al. 2016), and a JSON summary naming the method and its options. LAS
+// outputs carry the split as ASPRS classes (ground 2).
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -11,6 +13,7 @@
 #include "commands.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/progress.h"
+#include "hylo/io/text.h"
 #include "hylo/terrain/ground_filter.h"
 
 namespace hylo::cli {
@@ -118,6 +121,30 @@ io::CloudFile Select(const io::CloudFile& cloud, const terrain::GroundFilterResu
   return out;
 }
 
+// ASPRS classes a LAS output carries, so that survey software reads the split: ground points are
+// class 2; object points keep their input class, except "ground" (2) and "never classified" (0),
+// which become 1 ("unclassified": processed, not ground). Other formats keep the input labels.
+constexpr int32_t kLasNeverClassified = 0, kLasUnclassified = 1, kLasGround = 2;
+
+void ClassifyForLas(const std::string& path, terrain::GroundLabel label, io::CloudFile* cloud) {
+  if (io::ToLower(std::filesystem::path(path).extension().string()) != ".las") return;
+  if (label == terrain::GroundLabel::kGround) {
+    cloud->labels.assign(cloud->positions.size(), kLasGround);
+    return;
+  }
+  if (cloud->labels.empty()) cloud->labels.assign(cloud->positions.size(), kLasUnclassified);
+  for (int32_t& c : cloud->labels) {
+    if (c == kLasNeverClassified || c == kLasGround) c = kLasUnclassified;
+  }
+}
+
+io::CloudFile Output(const std::string& path, const io::CloudFile& cloud,
+                     const terrain::GroundFilterResult& r, terrain::GroundLabel label) {
+  io::CloudFile out = Select(cloud, r, label);
+  ClassifyForLas(path, label, &out);
+  return out;
+}
+
 // Steps the progress line counts: cloth simulation steps, or SMRF's openings.
 std::unique_ptr<io::Progress> MakeProgress(const terrain::GroundFilterOptions& o) {
   if (o.method == terrain::GroundMethod::kCsf) {
@@ -146,8 +173,10 @@ void RunGround(GroundArgs& args) {
   progress.reset();
   if (!result.ok) throw std::runtime_error(args.in_path + ": " + result.message);
   std::fprintf(stderr, "%s: %s\n", terrain::ToString(result.method).c_str(), result.message.c_str());
-  io::WriteCloud(args.ground_path, Select(cloud, result, terrain::GroundLabel::kGround));
-  io::WriteCloud(args.objects_path, Select(cloud, result, terrain::GroundLabel::kObject));
+  io::WriteCloud(args.ground_path,
+                 Output(args.ground_path, cloud, result, terrain::GroundLabel::kGround));
+  io::WriteCloud(args.objects_path,
+                 Output(args.objects_path, cloud, result, terrain::GroundLabel::kObject));
   std::fprintf(stderr, "wrote %s and %s\n", args.ground_path.c_str(), args.objects_path.c_str());
   io::Json summary = SummaryJson(args, result, seconds);
   summary["points"]["non_finite"] = result.num_invalid + cloud.dropped_non_finite;
@@ -239,9 +268,13 @@ void AddGroundCommand(CLI::App& root) {
       "Split a cloud into ground and objects: simple morphological filter (SMRF) or cloth "
       "simulation filter (CSF)");
   static GroundArgs args;
-  cmd->add_option("--in", args.in_path, "cloud (PCD/PLY), may be in UTM coordinates")->required();
-  cmd->add_option("--out-ground", args.ground_path, "ground points to write")->required();
-  cmd->add_option("--out-objects", args.objects_path, "object points to write")->required();
+  cmd->add_option("--in", args.in_path, "cloud (PCD/PLY/LAS), may be in UTM coordinates")
+      ->required();
+  cmd->add_option("--out-ground", args.ground_path,
+                  "ground points to write (.las: ASPRS class 2)")->required();
+  cmd->add_option("--out-objects", args.objects_path,
+                  "object points to write (.las: their input class; ground and never-classified "
+                  "become 1)")->required();
   cmd->add_option("--method", args.method,
                   "ground back-end: smrf (Pingel et al. 2013; the default, chosen by "
                   "leave-one-out on the ISPRS samples) or csf (Zhang et al. 2016)")

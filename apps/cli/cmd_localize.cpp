@@ -67,7 +67,7 @@ void AddLocalizeCommand(CLI::App& root) {
   CLI::App* cmd = root.add_subcommand("localize", "Localization in a prior map (+ hybrid mode)");
   cmd->add_option("--log", args->log, "ROS1 bag or scan folder")->required();
   cmd->add_option("--map", args->map,
-                  "prior map: PCD/PLY (world frame), or a tiled map directory (hylo tile), "
+                  "prior map: PCD/PLY/LAS (world frame), or a tiled map directory (hylo tile), "
                   "streamed around the vehicle")
       ->required();
   cmd->add_option("--config", args->config, "run configuration (YAML)")->required();

@@ -1,12 +1,14 @@
-// `hylo tile --in MAP --out DIR [--tile-size 50] [--voxel 0.1]`: cuts a map (PCD/PLY/KITTI .bin,
-// any size: it is read in chunks, io/map_tiler.h) into a tiled map directory that `hylo
-// localize --map DIR` streams around the vehicle. Prints the throughput and peak memory; the
-// `--tiles DIR` option of `hylo map` and `hylo craft` writes the same from their outputs.
+// `hylo tile --in MAP --out DIR [--tile-size 50] [--voxel 0.1] [--tile-format pcd|las]`: cuts a
+// map (PCD/PLY/KITTI .bin/LAS, any size: it is read in chunks, io/map_tiler.h) into a tiled map
+// directory that `hylo localize --map DIR` streams around the vehicle. Prints the throughput and
+// peak memory; the `--tiles DIR` option of `hylo map` and `hylo craft` writes the same from
+// their outputs.
 
 #include <sys/resource.h>
 
 #include <chrono>
 #include <cstdio>
+#include <map>
 
 #include "commands.h"
 #include "hylo/io/map_tiler.h"
@@ -25,6 +27,13 @@ void AddTileOptions(CLI::App* cmd, io::TileMapOptions* options, const std::strin
   cmd->add_option("--" + prefix + "overview-voxel", options->overview_voxel_m,
                   "overview for the global localizer (lowest point per voxel), m; 0 = none")
       ->capture_default_str();
+  const std::map<std::string, io::TileFormat> formats = {{"pcd", io::TileFormat::kPcd},
+                                                         {"las", io::TileFormat::kLas}};
+  cmd->add_option("--tile-format", options->tile_format,
+                  "tile files: pcd (float32, the map's local frame) or las (LAS 1.4 in the world "
+                  "frame, 0.1 mm, for survey software)")
+      ->transform(CLI::CheckedTransformer(formats, CLI::ignore_case))
+      ->default_str("pcd");
 }
 
 io::Json WriteTiles(const std::string& in_path, const std::string& out_dir,
@@ -42,6 +51,7 @@ io::Json WriteTiles(const std::string& in_path, const std::string& out_dir,
   j["out"] = out_dir;
   j["tile_size_m"] = options.tile_size_m;
   j["voxel_m"] = options.voxel_m;
+  j["tile_format"] = options.tile_format == io::TileFormat::kLas ? "las" : "pcd";
   j["points_read"] = s.points_read;
   j["non_finite"] = s.non_finite;
   j["points_written"] = s.points_written;
@@ -79,7 +89,7 @@ void AddTileCommand(CLI::App& root) {
   auto args = std::make_shared<TileArgs>();
   CLI::App* cmd = root.add_subcommand(
       "tile", "Cut a map of any size into tiles that localization streams around the vehicle");
-  cmd->add_option("--in", args->in, "map (PCD/PLY/KITTI .bin, world frame)")->required();
+  cmd->add_option("--in", args->in, "map (PCD/PLY/KITTI .bin/LAS, world frame)")->required();
   cmd->add_option("--out", args->out, "tiled map directory to write (replaced if a tiled map)")
       ->required();
   AddTileOptions(cmd, &args->options, "");

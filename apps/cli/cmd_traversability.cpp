@@ -128,7 +128,7 @@ void AddTraversabilityCommand(CLI::App& root) {
       "traversability", "Ground (+ object) cloud -> grid map layers -> traversability costmap");
   static TraversabilityArgs args;
   terrain::CostOptions& cost = args.options.cost;
-  cmd->add_option("--ground", args.ground_path, "ground cloud (PCD/PLY)")->required();
+  cmd->add_option("--ground", args.ground_path, "ground cloud (PCD/PLY/LAS)")->required();
   cmd->add_option("--objects", args.objects_path, "object (non-ground) cloud: obstacles");
   cmd->add_option("--out", args.out_dir, "output folder")->required();
   cmd->add_option("--resolution", args.options.resolution_m, "grid cell edge, m")

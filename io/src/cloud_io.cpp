@@ -1,4 +1,4 @@
-// Extension dispatch and the KITTI .bin format (float32 x y z intensity, no header).
+// Extension dispatch (LAZ refused here) and the KITTI .bin format (float32 x y z intensity, no header).
 
 #include "hylo/io/cloud_io.h"
 
@@ -9,6 +9,7 @@
 #include "cloud_fields.h"
 #include "cloud_streams.h"
 #include "hylo/io/cloud_stream.h"
+#include "las_format.h"
 
 namespace hylo::io {
 namespace {
@@ -20,8 +21,9 @@ std::string Extension(const std::string& path) {
 }
 
 [[noreturn]] void UnknownExtension(const std::string& path) {
+  if (Extension(path) == ".laz") ThrowFileError(path, internal::LazRefusal(path));
   ThrowFileError(path, "unknown point cloud extension '" + Extension(path) +
-                                     "' (expected .pcd, .ply or .bin)");
+                           "' (expected .pcd, .ply, .bin or .las)");
 }
 
 }  // namespace
@@ -31,6 +33,7 @@ CloudFile ReadCloud(const std::string& path) {
   if (ext == ".pcd") return ReadPcd(path);
   if (ext == ".ply") return ReadPly(path);
   if (ext == ".bin") return ReadKittiBin(path);
+  if (ext == ".las") return ReadLas(path);
   UnknownExtension(path);
 }
 
@@ -38,6 +41,7 @@ CloudFileInfo ReadCloudInfo(const std::string& path) {
   const std::string ext = Extension(path);
   if (ext == ".pcd") return ReadPcdInfo(path);
   if (ext == ".ply") return ReadPlyInfo(path);
+  if (ext == ".las") return ReadLasInfo(path);
   if (ext != ".bin") UnknownExtension(path);
   return internal::OpenKittiStream(path)->info();
 }
@@ -46,10 +50,16 @@ void WriteCloud(const std::string& path, const CloudFile& cloud, CloudEncoding e
   const std::string ext = Extension(path);
   if (ext == ".pcd") return WritePcd(path, cloud, encoding);
   if (ext == ".ply") return WritePly(path, cloud, encoding);
-  if (ext != ".bin") UnknownExtension(path);
-  if (encoding != CloudEncoding::kBinary) {
-    ThrowFileError(path, "cannot write: KITTI .bin is binary only");
+  if (ext == ".laz") {
+    ThrowFileError(path, "cannot write LAZ (compressed LAS): write .las and compress it with "
+                         "'laszip' or 'pdal translate'");
   }
+  if (ext != ".bin" && ext != ".las") UnknownExtension(path);
+  if (encoding != CloudEncoding::kBinary) {
+    ThrowFileError(path, std::string("cannot write: ") + (ext == ".las" ? "LAS" : "KITTI .bin") +
+                             " is binary only");
+  }
+  if (ext == ".las") return WriteLas(path, cloud);
   WriteKittiBin(path, cloud);
 }
 
@@ -112,6 +122,7 @@ std::unique_ptr<CloudStream> CloudStream::Open(const std::string& path) {
   if (ext == ".pcd") return internal::OpenPcdStream(path, /*whole=*/false);
   if (ext == ".ply") return internal::OpenPlyStream(path);
   if (ext == ".bin") return internal::OpenKittiStream(path);
+  if (ext == ".las") return internal::OpenLasStream(path);
   UnknownExtension(path);
 }
 

@@ -12,5 +12,6 @@ namespace hylo::io::internal {
 std::unique_ptr<CloudStream> OpenPcdStream(const std::string& path, bool whole);
 std::unique_ptr<CloudStream> OpenPlyStream(const std::string& path);
 std::unique_ptr<CloudStream> OpenKittiStream(const std::string& path);
+std::unique_ptr<CloudStream> OpenLasStream(const std::string& path);
 
 }  // namespace hylo::io::internal

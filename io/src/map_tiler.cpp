@@ -19,6 +19,7 @@
 #include "hylo/io/tiled_map.h"
 #include "hylo/mapping/tiles.h"
 #include "hylo/registration/voxel_filter.h"
+#include "las_format.h"
 
 namespace hylo::io {
 namespace {
@@ -99,6 +100,34 @@ PointCloud LowestPerVoxel(const PointCloud& points, float voxel_m) {
     }
   }
   return kept;
+}
+
+// A tile's file content, and its count and bounds as a reader will see them: PCD tiles hold the
+// local float32 points as they are; LAS tiles the world positions, which the reader quantizes to
+// the writer's grid and moves back by the origin.
+CloudFile TileFile(const std::string& path, const PointCloud& points,
+                   const Eigen::Vector3d& origin_world, TileFormat format, TiledMapTile* tile) {
+  CloudFile file;
+  file.positions.reserve(points.size());
+  for (const Eigen::Vector3f& p : points) {
+    file.positions.push_back(p.cast<double>() + (format == TileFormat::kLas ? origin_world
+                                                                           : Eigen::Vector3d::Zero()));
+  }
+  tile->points = points.size();
+  tile->min_local = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity());
+  tile->max_local = -tile->min_local;
+  const auto bound = [tile](const Eigen::Vector3f& p) {
+    tile->min_local = tile->min_local.cwiseMin(p);
+    tile->max_local = tile->max_local.cwiseMax(p);
+  };
+  if (format == TileFormat::kPcd) {
+    for (const Eigen::Vector3f& p : points) bound(p);
+    return file;
+  }
+  for (const Eigen::Vector3d& q : internal::LasQuantizedPositions(path, file.positions)) {
+    bound((q - origin_world).cast<float>());
+  }
+  return file;
 }
 
 // Removes the directory being built unless Release() was called.
@@ -215,22 +244,15 @@ TileMapSummary TileMap(const PositionChunks& next, const std::string& source,
   for (const auto& [key, count] : spills.counts()) {
     const PointCloud raw = spills.Read(key);
     if (overview) overview->Add(LowestPerVoxel(raw, static_cast<float>(options.overview_voxel_m)));
-    const PointCloud points = voxel > 0.f ? registration::UniformSample(raw, voxel) : raw;
     TiledMapTile tile;
     tile.ix = key.ix;
     tile.iy = key.iy;
-    tile.file = TileFileName(key.ix, key.iy);
-    tile.points = points.size();
-    CloudFile file;
-    file.positions.reserve(points.size());
-    tile.min_local = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity());
-    tile.max_local = -tile.min_local;
-    for (const Eigen::Vector3f& p : points) {
-      file.positions.push_back(p.cast<double>());
-      tile.min_local = tile.min_local.cwiseMin(p);
-      tile.max_local = tile.max_local.cwiseMax(p);
-    }
-    WriteCloud(partial.path() + "/" + tile.file, file, CloudEncoding::kBinary);
+    tile.file = TileFileName(key.ix, key.iy, options.tile_format);
+    const std::string path = partial.path() + "/" + tile.file;
+    const CloudFile file =
+        TileFile(path, voxel > 0.f ? registration::UniformSample(raw, voxel) : raw,
+                 index.origin_world, options.tile_format, &tile);
+    WriteCloud(path, file, CloudEncoding::kBinary);
     index.min_local = index.min_local.cwiseMin(tile.min_local);
     index.max_local = index.max_local.cwiseMax(tile.max_local);
     index.points += tile.points;

@@ -10,6 +10,7 @@
 #include "hylo/io/atomic_file.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/json.h"
+#include "hylo/io/text.h"
 
 namespace hylo::io {
 namespace {
@@ -112,8 +113,13 @@ bool IsTiledMap(const std::string& path) {
          std::filesystem::is_regular_file(TiledMapIndexPath(path), ec);
 }
 
-std::string TileFileName(int32_t ix, int32_t iy) {
-  return "tiles/" + std::to_string(ix) + "_" + std::to_string(iy) + ".pcd";
+std::string TileFileName(int32_t ix, int32_t iy, TileFormat format) {
+  return "tiles/" + std::to_string(ix) + "_" + std::to_string(iy) +
+         (format == TileFormat::kLas ? ".las" : ".pcd");
+}
+
+bool IsWorldFrameTile(const std::string& file) {
+  return ToLower(std::filesystem::path(file).extension().string()) == ".las";
 }
 
 TiledMapIndex ReadTiledMapIndex(const std::string& dir) {
@@ -177,7 +183,9 @@ void WriteTiledMapIndex(const std::string& dir, const TiledMapIndex& index) {
   j["tile_size_m"] = index.tile_size_m;
   j["voxel_m"] = index.voxel_m;
   j["origin_world"] = Vec(index.origin_world);
-  j["frame"] = "tile and overview points are local: world = point + origin_world";
+  j["frame"] =
+      "PCD tile and overview points are local (world = point + origin_world); LAS tiles are "
+      "world";
   j["source"] = index.source;
   j["points"] = index.points;
   j["bounds_local"] = {{"min", Vec(index.min_local)}, {"max", Vec(index.max_local)}};
@@ -215,9 +223,11 @@ void CheckTiledMapFiles(const std::string& dir, const TiledMapIndex& index) {
   }
 }
 
-PointCloud ReadTiledMapTile(const std::string& dir, const TiledMapTile& tile) {
+PointCloud ReadTiledMapTile(const std::string& dir, const Eigen::Vector3d& origin_world,
+                            const TiledMapTile& tile) {
   const std::string path = JoinPath(dir, tile.file);
   const CloudFile cloud = ReadCloud(path);
+  const Eigen::Vector3d shift = IsWorldFrameTile(tile.file) ? origin_world : Eigen::Vector3d::Zero();
   if (cloud.positions.size() != tile.points || cloud.dropped_non_finite > 0) {
     Fail(path, std::to_string(cloud.positions.size()) + " finite points, " +
                    TiledMapIndexPath(dir) + " says " + std::to_string(tile.points) +
@@ -228,7 +238,7 @@ PointCloud ReadTiledMapTile(const std::string& dir, const TiledMapTile& tile) {
   Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity());
   Eigen::Vector3f hi = -lo;
   for (const Eigen::Vector3d& p : cloud.positions) {
-    points.push_back(p.cast<float>());
+    points.push_back((p - shift).cast<float>());
     lo = lo.cwiseMin(points.back());
     hi = hi.cwiseMax(points.back());
   }

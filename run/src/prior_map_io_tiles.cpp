@@ -49,7 +49,7 @@ class FileTileSource final : public mapping::TileSource {
                                std::to_string(key.iy));
     PointCloud points;
     for (const auto& [dir, tile] : parts_[static_cast<std::size_t>(i)]) {
-      const PointCloud part = io::ReadTiledMapTile(dir, *tile);
+      const PointCloud part = io::ReadTiledMapTile(dir, index_.origin_world, *tile);
       points.insert(points.end(), part.begin(), part.end());
     }
     return thin_voxel_m_ > 0.0
@@ -177,7 +177,8 @@ std::size_t WriteAddedTiles(const std::string& out_dir, const mapping::PriorMap&
   const io::PositionChunks next = [&](std::vector<Eigen::Vector3d>* chunk) {
     PointCloud points;
     if (next_tile < source.added_index().tiles.size()) {
-      points = io::ReadTiledMapTile(added_dir, source.added_index().tiles[next_tile++]);
+      points = io::ReadTiledMapTile(added_dir, prior.origin_world,
+                                    source.added_index().tiles[next_tile++]);
     } else if (next_part < parts.size()) {
       points = parts[next_part++];
     } else {

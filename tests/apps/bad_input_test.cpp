@@ -211,7 +211,7 @@ void ExpectOnlyCompleteFiles(const std::string& dir) {
     const std::string ext = entry.path().extension().string();
     try {
       if (ext == ".json") io::ReadJsonFile(path);
-      if (ext == ".pcd" || ext == ".ply") io::ReadCloud(path);
+      if (ext == ".pcd" || ext == ".ply" || ext == ".las") io::ReadCloud(path);
       if (ext == ".yaml" && name == "config.yaml") {
         EXPECT_NE(ReadText(path).find("ground:"), std::string::npos) << "cut short: " << path;
       }
@@ -388,6 +388,50 @@ std::vector<Case> Cases() {
        },
        1,
        {"nan.pcd"}},
+      {"LAS truncated",
+       [=] {
+         cloud();
+         io::WriteCloud(Path("cloud.las"), io::ReadCloud(pcd));
+         return "craft --in " + truncated(Path("cloud.las"), Path("cut.las"), 0.5) + " --out " +
+                Path("o.las");
+       },
+       1,
+       {"cut.las", "truncated: 2000 points of 30 bytes"}},
+      {"LAS header with a broken VLR count",
+       [=] {
+         cloud();
+         io::WriteCloud(Path("cloud.las"), io::ReadCloud(pcd));
+         std::vector<char> bytes = ReadBytes(Path("cloud.las"));
+         bytes[100] = 1;  // one VLR announced, none between the header and the points
+         WriteBytes(Path("bad_vlr.las"), bytes);
+         return "ground --in " + Path("bad_vlr.las") + " --out-ground " + Path("g.las") +
+                " --out-objects " + Path("ob.las");
+       },
+       1,
+       {"bad_vlr.las", "VLR 1 of 1 does not fit"}},
+      {"LAZ prior map",
+       [=] {
+         WriteText(Path("map.laz"), "LASF");
+         return "localize --log " + GoodBag() + " --map " + Path("map.laz") + " --config " + sim +
+                " --guess '0 0 0 0 0 0' --out " + Path("o22");
+       },
+       1,
+       {"map.laz", "LAZ (compressed LAS) is not supported", "laszip -i"}},
+      {"LAS output cannot hold a label",
+       [=] {
+         io::CloudFile c;  // flat ground and a 1 m block 3 m up, every point labelled 1000
+         for (int i = 0; i < 2100; ++i) {
+           const double up = i < 2000 ? 0.0 : 3.0;
+           const int k = i < 2000 ? i : i - 2000;
+           c.positions.emplace_back(0.1 * (k % 50) + up, 0.1 * (k / 50) + up, up);
+         }
+         c.labels.assign(c.positions.size(), 1000);
+         io::WriteCloud(Path("labelled.pcd"), c);
+         return "ground --in " + Path("labelled.pcd") + " --out-ground " + Path("g2.las") +
+                " --out-objects " + Path("objects.las");
+       },
+       1,
+       {"objects.las", "label 1000, a LAS classification is 0-255"}},
       {"cloud file missing",
        [=] { return "craft --in " + Path("absent.pcd") + " --out x.pcd"; },
        1,

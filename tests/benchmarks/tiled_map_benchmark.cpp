@@ -253,7 +253,7 @@ std::vector<std::pair<std::string, std::size_t>> WriteCorridors(const Setup& s, 
     for (const auto& [d2, tile] : near) {
       if (writer.points() >= total * quarter / 4) break;
       PointCloud world;
-      for (const Eigen::Vector3f& p : io::ReadTiledMapTile(s.tiles, *tile)) {
+      for (const Eigen::Vector3f& p : io::ReadTiledMapTile(s.tiles, index.origin_world, *tile)) {
         world.push_back((p.cast<double>() + index.origin_world).cast<float>());
       }
       writer.Add(world);

@@ -208,6 +208,61 @@ io::CloudFile SmallCloud(bool utm) {
   return cloud;
 }
 
+// Little-endian field `value` at byte `at` of `bytes`.
+template <typename T>
+void PutAt(std::string* bytes, std::size_t at, T value) {
+  std::memcpy(&(*bytes)[at], &value, sizeof(T));
+}
+
+// LAS: the writer's files (1.4, format 6, with and without the normals' Extra Bytes VLR, UTM,
+// empty), and what it never writes, from the specification's layout: a 1.2 format 3 file with
+// a VLR and undescribed extra bytes, and a 1.4 file with an EVLR after its points.
+void LasSeeds() {
+  for (const bool utm : {false, true}) {
+    io::WriteCloud(Scratch("c.las"), SmallCloud(utm));
+    Emit("las", utm ? "normals_utm" : "normals", Take(Scratch("c.las")));
+  }
+  io::CloudFile bare = SmallCloud(true);
+  bare.normals.clear();
+  io::WriteCloud(Scratch("c.las"), bare);
+  const std::string format6 = Take(Scratch("c.las"));
+  Emit("las", "format6", format6);
+  io::WriteCloud(Scratch("c.las"), io::CloudFile());
+  Emit("las", "empty", Take(Scratch("c.las")));
+  // 1.2: 227-byte header, one 6-byte VLR, two 34 + 2 byte records (format 3 plus 2 extra).
+  std::string v12(227, '\0');
+  v12.replace(0, 4, "LASF");
+  v12[24] = 1;
+  v12[25] = 2;
+  PutAt<uint16_t>(&v12, 94, 227);
+  PutAt<uint32_t>(&v12, 96, 227 + 54 + 6);
+  PutAt<uint32_t>(&v12, 100, 1);
+  v12[104] = 3;
+  PutAt<uint16_t>(&v12, 105, 36);
+  PutAt<uint32_t>(&v12, 107, 2);
+  for (int k = 0; k < 3; ++k) PutAt<double>(&v12, 131 + 8 * k, 0.01);
+  std::string vlr(54 + 6, '\0');
+  vlr.replace(2, 4, "seed");
+  PutAt<uint16_t>(&vlr, 20, 6);
+  v12 += vlr;
+  for (int i = 0; i < 2; ++i) {
+    std::string record(36, '\0');
+    PutAt<int32_t>(&record, 0, 100 * i - 7);
+    PutAt<uint16_t>(&record, 12, 300);
+    record[15] = static_cast<char>(2 | 0x80);  // ground, withheld
+    v12 += record;
+  }
+  Emit("las", "v12_format3_vlr_extra", v12);
+  // 1.4 with one EVLR (60-byte header, 4 bytes) after the points.
+  std::string evlr = format6;
+  PutAt<uint64_t>(&evlr, 235, evlr.size());
+  PutAt<uint32_t>(&evlr, 243, 1);
+  std::string record(60 + 4, '\0');
+  record.replace(2, 4, "seed");
+  PutAt<uint64_t>(&record, 20, 4);
+  Emit("las", "v14_evlr", evlr + record);
+}
+
 void CloudSeeds() {
   const std::pair<io::CloudEncoding, const char*> pcd_encodings[] = {
       {io::CloudEncoding::kAscii, "ascii"},
@@ -236,6 +291,7 @@ void CloudSeeds() {
   kitti.labels.clear();
   io::WriteCloud(Scratch("c.bin"), kitti);
   Emit("kitti_bin", "five_points", Take(Scratch("c.bin")));
+  LasSeeds();
 }
 
 // --- trajectories, scan folders, pose guesses ----------------------------------------------
@@ -325,7 +381,8 @@ int main(int argc, char** argv) {
   }
   g_out = argv[1];
   for (const char* target : {"bag_pointcloud2", "bag_imu", "bag_records", "pcd", "ply", "kitti_bin",
-                             "trajectory", "scan_folder", "pose_guess", "run_config", "json"}) {
+                             "las", "trajectory", "scan_folder", "pose_guess", "run_config",
+                             "json"}) {
     fs::remove_all(g_out / target);  // seeds only: a rerun leaves no stale files
   }
   fs::create_directories(g_out);

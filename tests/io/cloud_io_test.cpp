@@ -185,7 +185,8 @@ TEST(CloudIo, MissingFileAndUnknownExtensionAreErrors) {
   ExpectReadError(dir + "/absent.ply", "cannot open");
   WriteRaw(dir + "/cloud.xyz", "1 2 3\n");
   ExpectReadError(dir + "/cloud.xyz", "unknown point cloud extension");
-  EXPECT_THROW(WriteCloud(dir + "/cloud.las", CloudFile{}), std::runtime_error);
+  EXPECT_THROW(WriteCloud(dir + "/cloud.xyz", CloudFile{}), std::runtime_error);
+  EXPECT_THROW(WriteCloud(dir + "/cloud.laz", CloudFile{}), std::runtime_error);  // LAZ: not written
   CloudFile bad;
   bad.positions = {{1, 2, 3}};
   bad.intensity = {1.f, 2.f};

@@ -149,7 +149,7 @@ TEST(MapTiler, StreamingTilerKeepsExactlyTheWholeMapThinnedAtOnce) {
   const mapping::TileGrid grid(index.tile_size_m);
   PointCloud tiled;
   for (const TiledMapTile& t : index.tiles) {
-    const PointCloud points = ReadTiledMapTile(dir + "/tiled", t);
+    const PointCloud points = ReadTiledMapTile(dir + "/tiled", index.origin_world, t);
     for (const Eigen::Vector3f& p : points) {
       const mapping::TileKey key = grid.KeyOf(p, static_cast<float>(index.voxel_m));
       ASSERT_EQ(key.ix, t.ix);
@@ -185,6 +185,40 @@ TEST(MapTiler, StreamingTilerKeepsExactlyTheWholeMapThinnedAtOnce) {
                              [](auto& a, auto& b) { return a.z() < b.z(); })
                 ->z(),
             lowest);
+}
+
+// LAS tiles from a LAS map: world-frame files (survey software shows them in place) that read
+// back, in the local frame, as the PCD tiles' points to within the LAS grid's half step.
+TEST(MapTiler, LasTilesHoldTheWorldFrameAndReadBackLocal) {
+  const std::string dir = hylo::testing::ScratchDir("map_tiler_las");
+  const CloudFile map = RandomMap(Eigen::Vector3d(512345.678, 5403210.123, 231.5), 7);
+  WriteCloud(dir + "/map.las", map);
+  TileMapOptions options;
+  options.tile_size_m = 25.0;
+  options.voxel_m = 0.25;
+  TileMapFile(dir + "/map.las", dir + "/pcd", options);
+  options.tile_format = TileFormat::kLas;
+  TileMapFile(dir + "/map.las", dir + "/las", options);
+  const TiledMapIndex pcd = ReadTiledMapIndex(dir + "/pcd");
+  const TiledMapIndex las = ReadTiledMapIndex(dir + "/las");
+  CheckTiledMapFiles(dir + "/las", las);
+  ASSERT_EQ(las.tiles.size(), pcd.tiles.size());
+  EXPECT_EQ(las.origin_world, pcd.origin_world);
+  for (std::size_t i = 0; i < las.tiles.size(); ++i) {
+    const TiledMapTile& t = las.tiles[i];
+    EXPECT_EQ(t.file, TileFileName(t.ix, t.iy, TileFormat::kLas));
+    ASSERT_EQ(t.points, pcd.tiles[i].points);
+    // The file is in the world frame ...
+    const CloudFile file = ReadCloud(dir + "/las/" + t.file);
+    EXPECT_GT(file.positions.front().y(), 5.4e6);
+    // ... and the tile, read as the streamer reads it, is the PCD tile's points to 0.1 mm.
+    const PointCloud a = ReadTiledMapTile(dir + "/las", las.origin_world, t);
+    const PointCloud b = ReadTiledMapTile(dir + "/pcd", pcd.origin_world, pcd.tiles[i]);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      ASSERT_LE((a[k] - b[k]).cwiseAbs().maxCoeff(), 0.6e-4f) << t.file << " point " << k;
+    }
+  }
 }
 
 TEST(MapTiler, OutputIsCompleteOrAbsent) {
@@ -234,16 +268,16 @@ TEST(TiledMapFiles, TilesThatDoNotMatchTheIndexAreNamed) {
   // A count that disagrees (header check and full read), bounds that disagree, a missing tile.
   index.tiles[0].points += 1;
   expect_error([&] { CheckTiledMapFiles(dir + "/t", index); }, "does not match its tiles");
-  expect_error([&] { ReadTiledMapTile(dir + "/t", index.tiles[0]); }, "does not match its tiles");
+  expect_error([&] { ReadTiledMapTile(dir + "/t", index.origin_world, index.tiles[0]); }, "does not match its tiles");
   index.tiles[0].points -= 1;
   index.tiles[0].max_local.z() += 1.f;
-  expect_error([&] { ReadTiledMapTile(dir + "/t", index.tiles[0]); }, "does not match its tiles");
+  expect_error([&] { ReadTiledMapTile(dir + "/t", index.origin_world, index.tiles[0]); }, "does not match its tiles");
   testing::Truncate(first, first + ".cut", testing::FileSize(first) - 8);
   fs::rename(first + ".cut", first);
-  expect_error([&] { ReadTiledMapTile(dir + "/t", index.tiles[0]); }, "truncated");
+  expect_error([&] { ReadTiledMapTile(dir + "/t", index.origin_world, index.tiles[0]); }, "truncated");
   fs::remove(first);
   expect_error([&] { CheckTiledMapFiles(dir + "/t", index); }, first + ": missing");
-  expect_error([&] { ReadTiledMapTile(dir + "/t", index.tiles[0]); }, "cannot open");
+  expect_error([&] { ReadTiledMapTile(dir + "/t", index.origin_world, index.tiles[0]); }, "cannot open");
 }
 
 }  // namespace

@@ -6,7 +6,8 @@
 //  2. each tile's spill is read back alone, thinned at voxel_m (uniform sampling, the prior
 //     map's rule: per voxel the point nearest its centre; a voxel never straddles two tiles,
 //     so the tiles together are the whole map thinned at once), written as a PCD, and folded
-//     into the overview (lowest point per overview voxel);
+//     into the overview (lowest point per overview voxel); LAS tiles (tile_format) are written
+//     in the world frame, their index bounds those of the quantized points they read back as;
 //  3. index.json is written last, and the directory appears under its name only when complete
 //     (built beside it and renamed; a previous tiled map of that name is replaced).
 // Memory: the chunk, the spill budget and one tile, whatever the map's size. Disk: the map
@@ -18,6 +19,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "hylo/io/tiled_map.h"
 
 namespace hylo::io {
 
@@ -33,6 +36,8 @@ struct TileMapOptions {
   std::size_t chunk_points = std::size_t{1} << 20;  ///< points read at a time (> 0)
   std::size_t spill_buffer_points = std::size_t{1} << 22;  ///< points buffered before they are
                                                            ///< appended to the spill files (> 0)
+  TileFormat tile_format = TileFormat::kPcd;  ///< tile files: PCD (local frame, float32) or LAS
+                                              ///< (world frame, 0.1 mm; see tiled_map.h)
   bool IsValid(std::string* why) const;
 };
 
@@ -58,7 +63,7 @@ using PositionChunks = std::function<bool(std::vector<Eigen::Vector3d>* chunk)>;
 TileMapSummary TileMap(const PositionChunks& next, const std::string& source,
                        const std::string& out_dir, const TileMapOptions& options);
 
-/// Tiles the point cloud file `in_path` (PCD/PLY/KITTI .bin, read in chunks).
+/// Tiles the point cloud file `in_path` (PCD/PLY/KITTI .bin/LAS, read in chunks).
 TileMapSummary TileMapFile(const std::string& in_path, const std::string& out_dir,
                            const TileMapOptions& options);
 

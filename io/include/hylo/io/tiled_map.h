@@ -6,6 +6,9 @@
 //   DIR/tiles/X_Y.pcd   tile (X, Y): binary PCD, float32 x y z in the map's *local* frame
 //                       (world = point + origin_world), so UTM maps keep their millimetres
 //                       in float32 and every tile loads as it is searched
+//   DIR/tiles/X_Y.las   or, when asked for (TileFormat::kLas), LAS 1.4 in the *world* frame, so
+//                       survey software shows each tile where it is; LAS keeps 0.1 mm with its
+//                       header's offset, and readers here subtract origin_world
 //   DIR/overview.pcd    optional: the map thinned to the lowest point per overview voxel
 //                       (local frame), what the global localizer's raster is built from
 //
@@ -14,7 +17,8 @@
 // "bounds_local": {"min", "max"}, "overview": {"file", "voxel_m", "points"} or null,
 // "tiles": [{"ix", "iy", "file", "points", "min", "max"}]}. Tile (ix, iy) holds the points
 // whose voxel (or, unthinned, whose position) has local x in [ix, ix + 1) * tile_size_m, y
-// alike; "min"/"max" bound its points exactly.
+// alike; "min"/"max" bound its points exactly (for LAS tiles: the local float32 positions the
+// tile reads back as, after its 0.1 mm quantization).
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -25,6 +29,12 @@
 #include "hylo/common/point_types.h"
 
 namespace hylo::io {
+
+/// The file format of a tiled map's tiles (the overview is always PCD).
+enum class TileFormat {
+  kPcd,  ///< binary PCD, float32 x y z, local frame
+  kLas,  ///< LAS 1.4, world frame (0.1 mm grid)
+};
 
 struct TiledMapTile {
   int32_t ix = 0;                                       ///< tile column (local x / tile size)
@@ -69,15 +79,20 @@ void WriteTiledMapIndex(const std::string& dir, const TiledMapIndex& index);
 /// what does not match.
 void CheckTiledMapFiles(const std::string& dir, const TiledMapIndex& index);
 
-/// Reads one tile (local frame) and checks it against its entry: the point count and the
-/// bounds must be the index's. Throws naming the file for a missing or corrupt tile and for a
-/// tile that does not match the index.
-PointCloud ReadTiledMapTile(const std::string& dir, const TiledMapTile& tile);
+/// Reads one tile (local frame; a LAS tile is moved from the world frame by `origin_world`, the
+/// index's) and checks it against its entry: the point count and the bounds must be the
+/// index's. Throws naming the file for a missing or corrupt tile and for a tile that does not
+/// match the index.
+PointCloud ReadTiledMapTile(const std::string& dir, const Eigen::Vector3d& origin_world,
+                            const TiledMapTile& tile);
 
 /// Reads the overview (local frame); empty when the map has none.
 PointCloud ReadTiledMapOverview(const std::string& dir, const TiledMapIndex& index);
 
-/// "tiles/<ix>_<iy>.pcd".
-std::string TileFileName(int32_t ix, int32_t iy);
+/// "tiles/<ix>_<iy>.pcd" (or ".las").
+std::string TileFileName(int32_t ix, int32_t iy, TileFormat format = TileFormat::kPcd);
+
+/// True for a tile file stored in the world frame (a LAS tile).
+bool IsWorldFrameTile(const std::string& file);
 
 }  // namespace hylo::io
