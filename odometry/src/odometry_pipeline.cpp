@@ -140,7 +140,8 @@ void OdometryPipeline::Process(std::vector<ScanResult>* results, bool flush) {
       imu_initializer_.status() == estimation::ImuInitializer::Status::kDone) {
     StartLocalization(MeasurementGroup());
   }
-  if (flush && status_ == Status::kRunning && supervisor_ && supervisor_->searching()) {
+  if (flush && status_ == Status::kRunning && supervisor_ && supervisor_->searching() &&
+      !supervisor_->started()) {
     Fail("no start pose: the log ended while searching (" + supervisor_->events().back().message +
          ")");
   }
@@ -152,8 +153,18 @@ void OdometryPipeline::Finish(std::vector<ScanResult>* results) {
 }
 
 std::vector<estimation::NavState> OdometryPipeline::TakeFinalizedStates() {
+  std::vector<estimation::NavState> finalized;
+  estimator_->TakeFinalized(&finalized);
+  // A trajectory holds places in the map only: the states of lost scans are left out.
   std::vector<estimation::NavState> states;
-  estimator_->TakeFinalized(&states);
+  states.reserve(finalized.size());
+  for (estimation::NavState& x : finalized) {
+    if (untrusted_t_ns_.count(x.t_ns) == 0) states.push_back(std::move(x));
+  }
+  if (!finalized.empty()) {
+    untrusted_t_ns_.erase(untrusted_t_ns_.begin(),
+                          untrusted_t_ns_.upper_bound(finalized.back().t_ns));
+  }
   return states;
 }
 
@@ -215,21 +226,27 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
     return Transformed(estimator_->state().T_imu_lidar, preprocessor_.Deskewed(scan, 0.0));
   };
   if (searching) {
-    // No pose in the map yet: the search-frame states and scans are not results.
+    // No place in the map yet: the scan is registered in the search frame, its result is
+    // provisional, and the supervisor tries to place the accumulated scans in the map.
+    result->pose_status = PoseStatus::kProvisional;
     std::string why;
     const PointCloud map_points_search =
         result->update.applied
             ? Transformed(result->state.T_map_lidar(), scan.registration.points_lidar)
             : PointCloud();
-    if (supervisor_->Search(sweep_imu(), map_points_search, map_, estimator_.get(), &why) ==
-        localization::LocalizationSupervisor::SearchStep::kGaveUp) {
-      Fail(why);
-    }
+    const auto step =
+        supervisor_->Search(sweep_imu(), map_points_search, map_, estimator_.get(), &why);
+    if (step == localization::LocalizationSupervisor::SearchStep::kGaveUp) Fail(why);
+    // The search frame's states are not the map's: none is finalized into a trajectory.
     std::vector<estimation::NavState> search_frame_states;
     estimator_->TakeFinalized(&search_frame_states);
-    return false;
-  }
-  if (supervisor_) {
+    if (step == localization::LocalizationSupervisor::SearchStep::kLocalized) {
+      result->pose_status = PoseStatus::kValid;
+      result->state = estimator_->state();
+      result->pose_covariance = estimator_->PoseCovariance();
+    }
+    result->T_map_odom = supervisor_->T_map_odom();
+  } else if (supervisor_) {
     // Health, loss and relocalization may replace the estimator's pose.
     if (supervisor_->Supervise(result->t_ns, result->health, result->state, sweep_imu, map_,
                                estimator_.get())) {
@@ -237,15 +254,19 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
       result->pose_covariance = estimator_->PoseCovariance();
     }
     result->T_map_odom = supervisor_->T_map_odom();
+    if (supervisor_->lost()) result->pose_status = PoseStatus::kLost;
+    if (supervisor_->searching()) result->pose_status = PoseStatus::kProvisional;
   }
+  if (result->pose_status != PoseStatus::kValid) untrusted_t_ns_.insert(result->t_ns);
   // The residuals have been read into the health; a run keeps every result, and a few
   // thousand floats per scan would make its memory grow with its length.
   std::vector<float>().swap(result->update.point_residuals_m);
 
   const auto map_start = std::chrono::steady_clock::now();
-  UpdateMap(scan.registration, result);
+  if (result->pose_status != PoseStatus::kProvisional) UpdateMap(scan.registration, result);
   result->map_ms = MsSince(map_start);
-  if (result->update.applied) {
+  // Only a scan placed in the map joins the dense map: a lost or provisional one would smear it.
+  if (result->update.applied && result->pose_status == PoseStatus::kValid) {
     result->registered_points_map = Transformed(result->state.T_map_lidar(), dense_lidar);
   }
   result->map_points = map_.Size();

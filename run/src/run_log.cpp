@@ -179,6 +179,12 @@ RunResult RunLog(const RunRequest& request) {
   run.live_trajectory = session.LiveTrajectory();
   io::WriteTum(request.out_dir + "/trajectory.tum", run.trajectory);
   io::WriteTum(request.out_dir + "/trajectory_live.tum", run.live_trajectory);
+  // Poses that are not a place in the map have a file of their own (odometry.csv's
+  // pose_status says which is which); written only when there are some.
+  const std::vector<io::StampedPose> provisional = session.ProvisionalTrajectory();
+  if (!provisional.empty()) {
+    io::WriteTum(request.out_dir + "/trajectory_provisional.tum", provisional);
+  }
   WriteOdometryCsv(request.out_dir + "/odometry.csv", results, origin_world, config.output);
   WriteTimingCsv(request.out_dir + "/timing.csv", results);
   // A tiled prior is never whole in memory: its run writes only what it added, as tiles.
@@ -218,6 +224,10 @@ RunResult RunLog(const RunRequest& request) {
   j["backend"] = config.BackendName();
   j["imu"] = config.pipeline.imu.enabled;
   j["scans_processed"] = results.size();
+  std::size_t by_status[3] = {0, 0, 0};
+  for (const ScanResult& r : results) ++by_status[static_cast<int>(r.pose_status)];
+  j["scans_by_pose_status"] = {{"valid", by_status[0]}, {"lost", by_status[1]},
+                               {"provisional", by_status[2]}};
   j["counters"] = PipelineCountersJson(pipeline.counters());
   const logs::LogReadCounters& read = log->counters();
   j["log_read"]["imu_messages"] = read.imu_messages;

@@ -46,10 +46,13 @@ std::vector<io::StampedPose> WorldTrajectory(const std::vector<estimation::NavSt
   return trajectory;
 }
 
-std::vector<estimation::NavState> LiveStates(const std::vector<odometry::ScanResult>& results) {
+std::vector<estimation::NavState> LiveStates(const std::vector<odometry::ScanResult>& results,
+                                            bool valid) {
   std::vector<estimation::NavState> states;
   states.reserve(results.size());
-  for (const odometry::ScanResult& r : results) states.push_back(r.state);
+  for (const odometry::ScanResult& r : results) {
+    if ((r.pose_status == odometry::PoseStatus::kValid) == valid) states.push_back(r.state);
+  }
   return states;
 }
 
@@ -61,7 +64,7 @@ void WriteOdometryCsv(const std::string& path, const std::vector<odometry::ScanR
   WriteCovarianceHeader(out, "pose_cov", kPoseAxes);
   WriteCovarianceHeader(out, "twist_cov", kTwistAxes);
   out << ",odom_frame_id,map_odom_x,map_odom_y,map_odom_z,map_odom_qx,map_odom_qy,map_odom_qz,"
-         "map_odom_qw,fitness_m2,inlier_ratio,matches,health_good\n";
+         "map_odom_qw,fitness_m2,inlier_ratio,matches,health_good,pose_status\n";
   for (const auto& r : results) {
     const Eigen::Vector3d p = r.state.p_map_imu + origin_world;
     const Eigen::Quaterniond& q = r.state.R_map_imu.unit_quaternion();
@@ -78,7 +81,7 @@ void WriteOdometryCsv(const std::string& path, const std::vector<odometry::ScanR
     out << ',' << output.odom_frame << ',' << t_mo.x() << ',' << t_mo.y() << ',' << t_mo.z()
         << ',' << q_mo.x() << ',' << q_mo.y() << ',' << q_mo.z() << ',' << q_mo.w() << ','
         << r.health.fitness_m2 << ',' << r.health.inlier_ratio << ',' << r.update.num_matches
-        << ',' << (r.health.good ? 1 : 0) << '\n';
+        << ',' << (r.health.good ? 1 : 0) << ',' << odometry::ToString(r.pose_status) << '\n';
   }
   file.Commit();
 }

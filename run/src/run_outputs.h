@@ -14,8 +14,10 @@ namespace hylo::run {
 /// T_world_imu of each state: the map pose plus the map's world origin.
 std::vector<io::StampedPose> WorldTrajectory(const std::vector<estimation::NavState>& states,
                                              const Eigen::Vector3d& origin_world);
-/// The live states of `results` (one per processed scan).
-std::vector<estimation::NavState> LiveStates(const std::vector<odometry::ScanResult>& results);
+/// The live states of `results` whose pose is a place in the map (`valid`), or of the others
+/// (lost, or provisional while searching).
+std::vector<estimation::NavState> LiveStates(const std::vector<odometry::ScanResult>& results,
+                                            bool valid);
 
 /// odometry.csv: per scan at its end time, frames named by `frames`, pose T_world_base, body
 /// twist, pose covariance [x y z (world/map axes, m); rx ry rz (base axes, rad)] and twist

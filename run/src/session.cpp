@@ -106,7 +106,11 @@ std::vector<io::StampedPose> Session::Trajectory() const {
 }
 
 std::vector<io::StampedPose> Session::LiveTrajectory() const {
-  return WorldTrajectory(LiveStates(results_), origin_world());
+  return WorldTrajectory(LiveStates(results_, /*valid=*/true), origin_world());
+}
+
+std::vector<io::StampedPose> Session::ProvisionalTrajectory() const {
+  return WorldTrajectory(LiveStates(results_, /*valid=*/false), origin_world());
 }
 
 }  // namespace hylo::run

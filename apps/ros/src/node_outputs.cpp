@@ -66,9 +66,13 @@ void NodeOutputs::PublishScan(const odometry::ScanResult& result) {
   const FramePoses poses = ComputeFramePoses(lie::ToIsometry(result.state.T_map_imu()),
                                              lie::ToIsometry(result.T_map_odom), origin_world_);
   const ros::Time stamp = logs::ros_bridge::ToRosTime(result.t_ns);
+  // odom -> base stays continuous whatever happens; map -> odom, the pose in the map and the
+  // path are published only for a pose that is a place in the map (not while lost or
+  // searching: the ~health topic says which).
+  tf_.sendTransform(Stamped(poses.T_odom_imu, stamp, frames_.odom, frames_.base));
+  if (result.pose_status != odometry::PoseStatus::kValid) return;
   odometry_.publish(ToOdometryMsg(result, poses, frames_));
-  tf_.sendTransform({Stamped(poses.T_world_odom, stamp, frames_.map, frames_.odom),
-                     Stamped(poses.T_odom_imu, stamp, frames_.odom, frames_.base)});
+  tf_.sendTransform(Stamped(poses.T_world_odom, stamp, frames_.map, frames_.odom));
   geometry_msgs::PoseStamped pose;
   pose.header.stamp = stamp;
   pose.header.frame_id = frames_.map;

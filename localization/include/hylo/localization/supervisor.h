@@ -103,6 +103,8 @@ class LocalizationSupervisor {
   bool on_map() const { return on_map_; }
 
   bool lost() const { return lost_; }
+  /// True once a start pose was accepted (a later search is a relocalization).
+  bool started() const { return started_; }
   /// map → odom (REP-105): relocalization jumps go here, so odom → imu stays continuous.
   const lie::SE3d& T_map_odom() const { return T_map_odom_; }
   const std::vector<LocalizationEvent>& events() const { return events_; }

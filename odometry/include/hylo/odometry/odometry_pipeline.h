@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -120,7 +121,8 @@ class OdometryPipeline {
   /// The log ended: processes what is left (as Process with flush) and finalizes every state.
   void Finish(std::vector<ScanResult>* results);
   /// The states the back-end finalized since the last call, oldest first, one per updated
-  /// scan (see Estimator: with the smoother they lag the live results by its window).
+  /// scan whose pose is a place in the map (PoseStatus::kValid; see Estimator: with the
+  /// smoother they lag the live results by its window).
   std::vector<estimation::NavState> TakeFinalizedStates();
 
   Status status() const;
@@ -160,6 +162,7 @@ class OdometryPipeline {
   Status status_ = Status::kInitializing;  // kLost is the supervisor's
   std::string message_;
   PipelineCounters counters_;
+  std::set<int64_t> untrusted_t_ns_;  // scans not kValid whose states are not finalized yet
 };
 
 }  // namespace hylo::odometry

@@ -14,9 +14,19 @@
 
 namespace hylo::odometry {
 
+/// How far a scan's pose may be trusted.
+enum class PoseStatus {
+  kValid,        ///< a pose in the map (SLAM: always)
+  kLost,         ///< in the map frame, but the scans stopped fitting the map: not a pose to use
+  kProvisional,  ///< no place in the map yet: odometry in a provisional frame while searching
+};
+/// "valid", "lost", "provisional".
+const char* ToString(PoseStatus status);
+
 /// One processed scan, stamped at its end.
 struct ScanResult {
   int64_t t_ns = 0;  ///< scan end, ns
+  PoseStatus pose_status = PoseStatus::kValid;  ///< only kValid poses are a place in the map
   estimation::NavState state;    ///< live state after the update (see Estimator)
   estimation::PoseCovariance6 pose_covariance = estimation::PoseCovariance6::Zero();
   estimation::UpdateSummary update;        ///< without point_residuals_m: read into `health`

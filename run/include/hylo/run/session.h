@@ -86,9 +86,13 @@ class Session {
   const std::vector<estimation::NavState>& finalized() const { return finalized_; }
   /// The registered scans thinned at output.dense_map_voxel_m, map frame (empty when 0).
   const PointCloud& dense_map() const;
-  /// T_world_imu of the finalized states, and of the live states of results().
+  /// T_world_imu of the finalized states, and of the live states of the results whose pose is
+  /// a place in the map (PoseStatus::kValid).
   std::vector<io::StampedPose> Trajectory() const;
   std::vector<io::StampedPose> LiveTrajectory() const;
+  /// The live states of the other results: lost (map frame, not to be trusted) or provisional
+  /// (the search's own frame, shifted by the map's origin like the rest).
+  std::vector<io::StampedPose> ProvisionalTrajectory() const;
   std::size_t scans_added() const { return scans_added_; }
   std::size_t scans_processed() const { return scans_processed_; }
   /// Wall time since the session was constructed, s.
