@@ -99,6 +99,9 @@ void VisitFields(V& v, estimation::InitialUncertainty& o) {
   v("extrinsic_rotation_sigma_rad", o.extrinsic_rotation_sigma_rad);
   v("extrinsic_translation_sigma_m", o.extrinsic_translation_sigma_m);
   v("localized_position_sigma_m", o.localized_position_sigma_m);
+  v("moving_tilt_sigma_rad", o.moving_tilt_sigma_rad);
+  v("moving_velocity_sigma_mps", o.moving_velocity_sigma_mps);
+  v("moving_gyro_bias_sigma_radps", o.moving_gyro_bias_sigma_radps);
 }
 
 template <class V>
@@ -245,6 +248,7 @@ void VisitFields(V& v, localization::MovingSearchOptions& o) {
   v("retry_m", o.retry_m);
   v("max_distance_m", o.max_distance_m);
   v("voxel_m", o.voxel_m);
+  v("background", o.background);
 }
 
 template <class V>

@@ -1,6 +1,7 @@
 #include "hylo/estimation/imu_initializer.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -56,32 +57,39 @@ void ImuInitializer::Decide() {
     gyro_var += (s.gyro_imu - gyro_mean).squaredNorm() / n;
   }
   const double accel_std = std::sqrt(accel_var), gyro_std = std::sqrt(gyro_var);
+  const bool moving = accel_std > options_.max_accel_std_mps2 ||
+                      gyro_std > options_.max_gyro_std_radps ||
+                      gyro_mean.norm() > options_.max_gyro_mean_radps;
+  // A moving vehicle's mean specific force is gravity plus its mean acceleration: the
+  // tolerance then also allows a vehicle speeding up or braking at ~0.2 g.
+  const double gravity_tolerance =
+      moving ? std::max(options_.gravity_tolerance_mps2, 0.2 * gravity_mps2_)
+             : options_.gravity_tolerance_mps2;
   std::ostringstream why;
-  if (accel_std > options_.max_accel_std_mps2 || gyro_std > options_.max_gyro_std_radps ||
-      gyro_mean.norm() > options_.max_gyro_mean_radps) {
-    why << "IMU initialisation needs the vehicle at rest for " << options_.duration_s
-        << " s, but it moves: accel spread " << accel_std << " m/s^2 (max "
-        << options_.max_accel_std_mps2 << "), gyro spread " << gyro_std << " rad/s (max "
-        << options_.max_gyro_std_radps << "), mean rate " << gyro_mean.norm() << " rad/s (max "
-        << options_.max_gyro_mean_radps << ")";
-  } else if (std::abs(accel_mean.norm() - gravity_mps2_) > options_.gravity_tolerance_mps2) {
+  if (std::abs(accel_mean.norm() - gravity_mps2_) > gravity_tolerance) {
     why << "IMU initialisation: mean specific force " << accel_mean.norm()
         << " m/s^2 differs from gravity " << gravity_mps2_ << " m/s^2 by more than "
-        << options_.gravity_tolerance_mps2 << " (wrong units? set imu.accel_scale)";
-  }
-  message_ = why.str();
-  if (!message_.empty()) {
+        << gravity_tolerance << " (wrong units? set imu.accel_scale)";
+    message_ = why.str();
     status_ = Status::kFailed;
     return;
+  }
+  if (moving) {
+    why << "the vehicle moves during the IMU initialisation (" << options_.duration_s
+        << " s): accel spread " << accel_std << " m/s^2 (rest: at most "
+        << options_.max_accel_std_mps2 << "), gyro spread " << gyro_std
+        << " rad/s (at most " << options_.max_gyro_std_radps << "), mean rate "
+        << gyro_mean.norm() << " rad/s (at most " << options_.max_gyro_mean_radps << ")";
+    message_ = why.str();
   }
   // At rest the accelerometer reads −Rᵀ g = Rᵀ (0, 0, |g|): R rotates the reading onto +z.
   state_ = NavState{};
   state_.t_ns = samples_.back().t_ns;
   state_.R_map_imu = lie::SO3d(
       Eigen::Quaterniond::FromTwoVectors(accel_mean.normalized(), Eigen::Vector3d::UnitZ()));
-  state_.gyro_bias = gyro_mean;
+  state_.gyro_bias = moving ? Eigen::Vector3d::Zero() : gyro_mean;
   state_.gravity_map = Eigen::Vector3d(0.0, 0.0, -gravity_mps2_);
-  status_ = Status::kDone;
+  status_ = moving ? Status::kMoving : Status::kDone;
 }
 
 }  // namespace hylo::estimation

@@ -49,7 +49,8 @@ LocalizationSupervisor::LocalizationSupervisor(
       global_(global_search),
       guess_(T_map_imu_guess),
       search_map_(search_map),
-      search_planes_(search_planes) {}
+      search_planes_(search_planes),
+      background_in_use_(options.search.background) {}
 
 void LocalizationSupervisor::RequestRelocalization(const Eigen::Isometry3d& T_map_imu_guess) {
   if (!started_ && !searching()) {
@@ -179,14 +180,25 @@ bool LocalizationSupervisor::Supervise(int64_t t_ns, const ScanHealth& health,
   }
   std::optional<Eigen::Isometry3d> guess;
   guess.swap(relocalize_request_);
-  // A user's request is judged as given; only the search of a lost vehicle may go global.
-  const bool requested = guess.has_value();
-  if (!guess && lost_ && scans_until_retry_-- <= 0) {
-    guess = lie::ToIsometry(estimator->state().T_map_imu());  // search around where we are
+  if (guess) {
+    // A user's request is judged as given; only a lost vehicle's search may go global.
+    return Relocalize(sweep_imu(), map, *guess, /*allow_global=*/false, estimator);
   }
-  if (!guess) return false;
-  if (Relocalize(sweep_imu(), map, *guess, /*allow_global=*/!requested, estimator)) return true;
-  if (lost_) scans_until_retry_ = options_.relocalize_retry_scans;
+  if (!lost_ || scans_until_retry_-- > 0) return false;
+  // Lost: first around where the vehicle was (a slip, a short gap). When that fails and
+  // searching while moving is possible, the vehicle may be anywhere: odometry goes on in a
+  // provisional frame and the accumulated scans, far more telling than one sweep, are placed
+  // in the map (moving_search.h). Without it, the sweep alone is searched for over the whole
+  // map, again every relocalize_retry_scans.
+  const PointCloud sweep = sweep_imu();
+  const Eigen::Isometry3d here = lie::ToIsometry(estimator->state().T_map_imu());
+  if (Relocalize(sweep, map, here, /*allow_global=*/!CanSearch(), estimator)) return true;
+  if (CanSearch()) {
+    BeginSearch(estimator->state(), sweep, /*is_start=*/false,
+                "lost: " + events_.back().message);
+    return false;
+  }
+  scans_until_retry_ = options_.relocalize_retry_scans;
   return false;
 }
 

@@ -22,6 +22,24 @@ bool LocalizationSupervisor::RequestGlobalLocalization(std::string* why) {
   return true;
 }
 
+bool LocalizationSupervisor::StartMoving(const estimation::NavState& x,
+                                         const estimation::StateCovariance& P,
+                                         const PointCloud& points_imu, const std::string& reason,
+                                         estimation::Estimator* estimator, std::string* why) {
+  if (!CanSearch()) {
+    *why = "no start pose: " + reason + ", and a start on the move needs a search while moving (" +
+           (options_.search.enabled ? global_->why_unavailable()
+                                    : std::string("localization.search.enabled is false")) +
+           ")";
+    AddEvent(LocalizationEvent::Kind::kInitializationFailed, x.t_ns, *why,
+             Eigen::Isometry3d::Identity());
+    return false;
+  }
+  estimator->Initialize(x, P);
+  BeginSearch(x, points_imu, /*is_start=*/true, reason);
+  return true;
+}
+
 void LocalizationSupervisor::BeginSearch(const estimation::NavState& x, const PointCloud& points_imu,
                                          bool is_start, const std::string& reason) {
   search_ = std::make_unique<MovingSearch>(options_.search, search_map_, search_planes_,
@@ -43,54 +61,88 @@ LocalizationSupervisor::SearchStep LocalizationSupervisor::Search(
   // Begun on request, a standing vehicle tries once it has as many scans as a start.
   const int first_attempt_scans = search_is_start_ ? 0 : options_.init_scans;
   const bool due = search_->Add(sweep_imu, map_points_search, T_search_imu, first_attempt_scans);
+  if (!background_) background_ = std::make_unique<BackgroundSearch>(*global_, map);
+  if (std::optional<SearchAttempt> done = background_->TakeFinished()) {
+    if (Conclude(*done, map, estimator)) return SearchStep::kLocalized;
+  }
   std::optional<Eigen::Isometry3d> guess;
   guess.swap(relocalize_request_);
-  if (!due && !guess) return SearchStep::kSearching;
-  ++scans_initializer_;
-  const PointCloud cloud_imu = search_->TakeAttemptCloud(T_search_imu);
-  if (guess) {
-    // A user's pose (e.g. ROS /initialpose) is judged as given, on the longer cloud.
-    const IcpInitializerResult icp =
-        icp_initializer_.Initialize(cloud_imu, map, *guess);
-    if (icp.accepted) {
-      EndSearch(icp.T_map_imu, estimator, "requested pose accepted: " + icp.message, icp);
-      return SearchStep::kLocalized;
+  const bool attempt_now = due && !background_->Busy();
+  if (guess || attempt_now) {
+    ++scans_initializer_;
+    PointCloud cloud_imu = search_->TakeAttemptCloud(T_search_imu);
+    if (guess) {
+      // A user's pose (e.g. ROS /initialpose) is judged as given, on the longer cloud.
+      const IcpInitializerResult icp = icp_initializer_.Initialize(cloud_imu, map, *guess);
+      if (icp.accepted) {
+        EndSearch(icp.T_map_imu, estimator, "requested pose accepted: " + icp.message, icp);
+        return SearchStep::kLocalized;
+      }
+      AddEvent(LocalizationEvent::Kind::kSearching, x.t_ns, "requested pose " + icp.message,
+               T_search_imu, &icp);
     }
-    AddEvent(LocalizationEvent::Kind::kSearching, x.t_ns, "requested pose " + icp.message,
-             T_search_imu, &icp);
-    if (!due) return SearchStep::kSearching;
-  }
-  const GlobalLocalizationResult r =
-      global_->Localize(cloud_imu, LevellingRotation(T_search_imu.linear()), map);
-  std::ostringstream os;
-  os << "global localization " << r.message << " (attempt " << search_->attempts() << " after "
-     << search_->distance_m() << " m and " << search_->scans() << " scans, " << cloud_imu.size()
-     << " points, " << r.elapsed_s << " s CPU)";
-  if (r.status == GlobalStatus::kAccepted) {
-    // The accumulated cloud found the place; the last scans alone, free of the drift of the
-    // search's odometry farther back, place the vehicle now (the whole cloud is kept when
-    // they fail: a moving vehicle's few scans can be too sparse to pass on their own).
-    const IcpInitializerResult recent =
-        icp_initializer_.Initialize(search_->RecentInImu(T_search_imu), map, r.T_map_imu);
-    if (recent.accepted) {
-      os << "; last " << options_.init_scans << " scans: " << recent.message;
-      EndSearch(recent.T_map_imu, estimator, os.str(), recent);
-    } else {
-      EndSearch(r.T_map_imu, estimator, os.str(), r.refinement);
+    if (attempt_now) {
+      SearchAttempt attempt;
+      attempt.T_search_imu = T_search_imu;
+      attempt.t_ns = x.t_ns;
+      attempt.attempt = search_->attempts();
+      attempt.distance_m = search_->distance_m();
+      attempt.scans = search_->scans();
+      background_->Start(std::move(cloud_imu), LevellingRotation(T_search_imu.linear()),
+                         attempt);
+      if (!background_in_use_) {
+        background_->Wait();
+        if (Conclude(*background_->TakeFinished(), map, estimator)) {
+          return SearchStep::kLocalized;
+        }
+      }
     }
-    return SearchStep::kLocalized;
   }
   if (search_->GaveUp()) {
+    background_.reset();  // waits for an attempt in flight
     *why = "no pose after searching over " + std::to_string(search_->distance_m()) +
-           " m (localization.search.max_distance_m): " + os.str();
+           " m (localization.search.max_distance_m): " + last_attempt_;
     AddEvent(search_is_start_ ? LocalizationEvent::Kind::kInitializationFailed
                               : LocalizationEvent::Kind::kRelocalizationFailed,
              x.t_ns, *why, T_search_imu);
     search_.reset();
     return SearchStep::kGaveUp;
   }
-  AddEvent(LocalizationEvent::Kind::kSearching, x.t_ns, os.str(), T_search_imu);
   return SearchStep::kSearching;
+}
+
+bool LocalizationSupervisor::Conclude(const SearchAttempt& attempt,
+                                      const registration::NeighborSearch& map,
+                                      estimation::Estimator* estimator) {
+  const GlobalLocalizationResult& r = attempt.result;
+  std::ostringstream os;
+  os << "global localization " << r.message << " (attempt " << attempt.attempt << " after "
+     << attempt.distance_m << " m and " << attempt.scans << " scans, " << attempt.points
+     << " points, " << r.elapsed_s << " s CPU)";
+  last_attempt_ = os.str();
+  const Eigen::Isometry3d T_search_imu = lie::ToIsometry(estimator->state().T_map_imu());
+  if (r.status != GlobalStatus::kAccepted) {
+    AddEvent(LocalizationEvent::Kind::kSearching, attempt.t_ns, last_attempt_,
+             attempt.T_search_imu);
+    return false;
+  }
+  // The attempt placed the search frame in the map as it was at the attempt's scan; the
+  // odometry since then carries that to now. The last scans alone, free of the drift the
+  // search's odometry gathered farther back, then place the vehicle now (the attempt's pose
+  // is kept when they fail: a moving vehicle's few scans can be too sparse on their own).
+  const Eigen::Isometry3d T_map_search = r.T_map_imu * attempt.T_search_imu.inverse();
+  const Eigen::Isometry3d T_map_imu_now = T_map_search * T_search_imu;
+  const IcpInitializerResult recent =
+      icp_initializer_.Initialize(search_->RecentInImu(T_search_imu), map, T_map_imu_now);
+  if (recent.accepted) {
+    os << "; last " << options_.init_scans << " scans: " << recent.message;
+    EndSearch(recent.T_map_imu, estimator, os.str(), recent);
+  } else {
+    IcpInitializerResult moved = r.refinement;
+    moved.T_map_imu = T_map_imu_now;
+    EndSearch(T_map_imu_now, estimator, os.str(), moved);
+  }
+  return true;
 }
 
 void LocalizationSupervisor::EndSearch(const Eigen::Isometry3d& T_map_imu, estimation::Estimator* estimator,
@@ -107,6 +159,7 @@ void LocalizationSupervisor::EndSearch(const Eigen::Isometry3d& T_map_imu, estim
   // REP-105: the search frame was the odom frame's stand-in, so odom -> imu stays continuous.
   T_map_odom_ = T_map_search * T_map_odom_;
   const bool is_start = search_is_start_;
+  background_.reset();  // waits for an attempt in flight: the map is about to change again
   search_.reset();
   if (is_start) {
     started_ = true;

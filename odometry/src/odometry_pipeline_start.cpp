@@ -33,8 +33,11 @@ void OdometryPipeline::SetInitialGuess(const std::optional<Eigen::Isometry3d>& T
     global_search_ = std::make_unique<localization::GlobalSearch>(
         options_.localization, PointCloud(), "no prior map was given (SetPriorMap)");
   }
+  localization::LocalizationOptions localization = options_.localization;
+  // A tiled prior's tiles change under the scan thread: its global attempts run there.
+  if (map_.tiled()) localization.search.background = false;
   supervisor_ = std::make_unique<localization::LocalizationSupervisor>(
-      options_.localization, options_.initial_uncertainty, T_map_imu_guess, global_search_.get(),
+      localization, options_.initial_uncertainty, T_map_imu_guess, global_search_.get(),
       options_.map, options_.planes);
 }
 
@@ -70,6 +73,10 @@ bool OdometryPipeline::Start(const MeasurementGroup& group) {
     const std::size_t used = FeedImuInitializer(group);
     if (imu_initializer_.status() == estimation::ImuInitializer::Status::kFailed) {
       Fail(imu_initializer_.message());
+      return true;
+    }
+    if (imu_initializer_.status() == estimation::ImuInitializer::Status::kMoving) {
+      StartMoving(group, {group.imu.begin() + (used - 1), group.imu.end()});
       return true;
     }
     if (!supervisor_) {
@@ -126,7 +133,28 @@ void OdometryPipeline::StartSlam(const estimation::NavState& start, const std::v
   status_ = Status::kRunning;
 }
 
-void OdometryPipeline::AddStaticScan(const MeasurementGroup& group) {
+void OdometryPipeline::StartMoving(const MeasurementGroup& group,
+                                   const std::vector<ImuSample>& imu_after) {
+  estimation::NavState x = imu_initializer_.state();
+  x.T_imu_lidar = options_.T_imu_lidar;
+  const estimation::StateCovariance P = options_.initial_uncertainty.MovingCovariance(x);
+  if (supervisor_) {
+    // No place yet and no static scans to find one with: the vehicle searches while it
+    // moves, from the scan that ended the initialisation.
+    std::string why;
+    if (!supervisor_->StartMoving(x, P, ScanInImu(group), imu_initializer_.message(),
+                                  estimator_.get(), &why)) {
+      Fail(why);
+      return;
+    }
+  } else {
+    estimator_->Initialize(x, P);
+  }
+  for (const ImuSample& s : imu_after) estimator_->AddImu(s);
+  status_ = Status::kRunning;
+}
+
+PointCloud OdometryPipeline::ScanInImu(const MeasurementGroup& group) {
   LidarScan scan = group.scan;
   preprocessor_.Clean(&scan);
   PointCloud points_imu;
@@ -134,7 +162,11 @@ void OdometryPipeline::AddStaticScan(const MeasurementGroup& group) {
   for (const ScanPoint& p : scan.points) {
     points_imu.push_back((options_.T_imu_lidar * p.position_lidar.cast<double>()).cast<float>());
   }
-  supervisor_->AddStaticScan(points_imu, group.imu.empty() ? 0 : group.imu.back().t_ns);
+  return points_imu;
+}
+
+void OdometryPipeline::AddStaticScan(const MeasurementGroup& group) {
+  supervisor_->AddStaticScan(ScanInImu(group), group.imu.empty() ? 0 : group.imu.back().t_ns);
 }
 
 void OdometryPipeline::StartLocalization(const MeasurementGroup& group) {

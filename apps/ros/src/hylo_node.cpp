@@ -21,6 +21,8 @@ FrameNames FramesOf(const config::RunConfig& config) {
 odometry::OdometryPipelineOptions PipelineOptionsFor(const config::RunConfig& config,
                                                        const NodeParams& params) {
   odometry::OdometryPipelineOptions options = config.PipelineOptions();
+  // Live: a search's global attempts run beside the scan path, which never waits for them.
+  options.localization.search.background = true;
   if (params.registered_scan_voxel_m >= 0.0) {
     options.output.dense_map_voxel_m = params.registered_scan_voxel_m;
   }

@@ -2,6 +2,9 @@
 // Static IMU initialisation: with the vehicle at rest, the mean specific force is gravity seen
 // in the IMU frame (roll, pitch and the gravity magnitude), the mean rate is the gyro bias.
 // Yaw is unobservable and set to zero (the map frame is defined by the first pose).
+// A vehicle that moves meanwhile (a log that starts on the move) still gets a start: roll and
+// pitch from the mean specific force, which then also holds the vehicle's mean acceleration,
+// and no gyro bias (the mean rate is the turn); the caller starts it with wider uncertainty.
 
 #include <Eigen/Core>
 #include <string>
@@ -23,7 +26,9 @@ struct ImuInitializerOptions {
 
 class ImuInitializer {
  public:
-  enum class Status { kCollecting, kDone, kFailed };
+  /// kDone: at rest; kMoving: the vehicle moves (state() is the moving estimate, message()
+  /// says what showed it); kFailed: unusable data (e.g. accelerations in the wrong unit).
+  enum class Status { kCollecting, kDone, kMoving, kFailed };
 
   ImuInitializer(const ImuInitializerOptions& options, double gravity_mps2);
 
@@ -31,9 +36,9 @@ class ImuInitializer {
   Status Add(const ImuSample& sample);
 
   Status status() const { return status_; }
-  /// The initial state (valid when kDone): rotation from gravity, gyro bias, t_ns = last sample.
+  /// The initial state (kDone, kMoving): rotation from gravity, gyro bias, t_ns = last sample.
   const NavState& state() const { return state_; }
-  /// Why it failed (kFailed), with the measured figures.
+  /// Why it failed (kFailed) or why the vehicle is taken to move (kMoving), with the figures.
   const std::string& message() const { return message_; }
 
  private:

@@ -22,6 +22,7 @@
 #include "hylo/estimation/initial_uncertainty.h"
 #include "hylo/localization/localization.h"
 #include "hylo/localization/moving_search.h"
+#include "hylo/localization/background_search.h"
 #include "hylo/localization/global_search.h"
 #include "hylo/localization/icp_initializer.h"
 #include "hylo/registration/neighbor_search.h"
@@ -64,6 +65,14 @@ class LocalizationSupervisor {
   /// runs in the search frame (see Search).
   bool Start(estimation::NavState start, bool gravity_known, const registration::NeighborSearch& map,
              estimation::Estimator* estimator, std::string* why);
+
+  /// The log starts while the vehicle moves: no static scans to start from. `estimator`
+  /// starts at `x` (attitude from the IMU, position zero) with covariance `P` in the search
+  /// frame, and the vehicle searches while it moves from `points_imu` (one scan); `reason`
+  /// says what showed the motion. False with *why when searching while moving is off.
+  bool StartMoving(const estimation::NavState& x, const estimation::StateCovariance& P,
+                   const PointCloud& points_imu, const std::string& reason,
+                   estimation::Estimator* estimator, std::string* why);
 
   // --- searching while moving (moving_search.h) ---
   /// True while no pose is known and the estimator runs in the provisional search frame,
@@ -129,6 +138,10 @@ class LocalizationSupervisor {
   // with `points_imu`; `reason` says why there is no pose.
   void BeginSearch(const estimation::NavState& x, const PointCloud& points_imu, bool is_start,
                    const std::string& reason);
+  // A finished global attempt: accepted, it places the search frame in the map and the last
+  // scans refine the pose now; otherwise an event says why. True when the search ended.
+  bool Conclude(const SearchAttempt& attempt, const registration::NeighborSearch& map,
+                estimation::Estimator* estimator);
   // The search found the vehicle at `T_map_imu`: the estimator goes on in the map.
   void EndSearch(const Eigen::Isometry3d& T_map_imu, estimation::Estimator* estimator,
                  const std::string& verdict, const IcpInitializerResult& icp);
@@ -156,6 +169,9 @@ class LocalizationSupervisor {
   mapping::MapManagerOptions search_map_;
   registration::PlaneMatcherOptions search_planes_;
   std::unique_ptr<MovingSearch> search_;  // non-null while searching
+  std::unique_ptr<BackgroundSearch> background_;  // the search's global attempts
+  bool background_in_use_ = false;  // attempts run off the scan thread (search.background)
+  std::string last_attempt_;        // the last attempt's verdict, for a search that gives up
   bool search_is_start_ = false;          // the search began at the start (not on request)
   int bad_scans_in_row_ = 0;
   int scans_until_retry_ = 0;

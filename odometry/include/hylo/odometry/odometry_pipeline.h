@@ -140,6 +140,8 @@ class OdometryPipeline {
   bool StartWithoutImu(const MeasurementGroup& group);
   std::size_t FeedImuInitializer(const MeasurementGroup& group);
   void StartSlam(const estimation::NavState& x, const std::vector<ImuSample>& imu_after);
+  void StartMoving(const MeasurementGroup& group, const std::vector<ImuSample>& imu_after);
+  PointCloud ScanInImu(const MeasurementGroup& group);  // cleaned, IMU frame
   void AddStaticScan(const MeasurementGroup& group);
   void StartLocalization(const MeasurementGroup& group);
   void Fail(const std::string& why);

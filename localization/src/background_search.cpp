@@ -1,0 +1,52 @@
+#include "hylo/localization/background_search.h"
+
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <utility>
+
+namespace hylo::localization {
+namespace {
+
+// Below the scan thread: on a loaded computer the tracking keeps its share of the CPU and the
+// attempt takes what is left. Best effort: an unprivileged thread may only lower itself.
+constexpr int kWorkerNiceness = 10;
+
+void LowerThisThreadsPriority() {
+  const auto tid = static_cast<id_t>(syscall(SYS_gettid));
+  setpriority(PRIO_PROCESS, tid, kWorkerNiceness);
+}
+
+}  // namespace
+
+bool BackgroundSearch::Start(PointCloud cloud_imu, const Eigen::Matrix3d& R_level_imu,
+                             SearchAttempt attempt) {
+  if (Busy()) return false;
+  attempt.points = cloud_imu.size();
+  running_ = std::async(std::launch::async,
+                        [this, cloud = std::move(cloud_imu), R_level_imu,
+                         attempt = std::move(attempt)]() mutable {
+                          LowerThisThreadsPriority();
+                          attempt.result = search_.Localize(cloud, R_level_imu, map_);
+                          return attempt;
+                        });
+  return true;
+}
+
+bool BackgroundSearch::Busy() const {
+  return running_.valid() &&
+         running_.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
+}
+
+std::optional<SearchAttempt> BackgroundSearch::TakeFinished() {
+  if (!running_.valid() || Busy()) return std::nullopt;
+  return running_.get();
+}
+
+void BackgroundSearch::Wait() {
+  if (running_.valid()) running_.wait();
+}
+
+}  // namespace hylo::localization
