@@ -21,17 +21,29 @@ void LowerThisThreadsPriority() {
 
 }  // namespace
 
-bool BackgroundSearch::Start(PointCloud cloud_imu, const Eigen::Matrix3d& R_level_imu,
-                             SearchAttempt attempt) {
+bool BackgroundSearch::Start(PointCloud cloud_imu, PointCloud recent_imu,
+                             const Eigen::Matrix3d& R_level_imu, SearchAttempt attempt) {
   if (Busy()) return false;
   attempt.points = cloud_imu.size();
-  running_ = std::async(std::launch::async,
-                        [this, cloud = std::move(cloud_imu), R_level_imu,
-                         attempt = std::move(attempt)]() mutable {
-                          LowerThisThreadsPriority();
-                          attempt.result = search_.Localize(cloud, R_level_imu, map_);
-                          return attempt;
-                        });
+  running_ = std::async(
+      std::launch::async, [this, cloud = std::move(cloud_imu), recent = std::move(recent_imu),
+                           R_level_imu, attempt = std::move(attempt)]() mutable {
+        LowerThisThreadsPriority();
+        attempt.result = search_.Localize(cloud, R_level_imu, map_);
+        if (attempt.result.status != GlobalStatus::kAccepted && !recent.empty()) {
+          GlobalLocalizationResult r = search_.Localize(recent, R_level_imu, map_);
+          if (r.status == GlobalStatus::kAccepted) {
+            r.elapsed_s += attempt.result.elapsed_s;
+            attempt.result = std::move(r);
+            attempt.from_recent = true;
+            attempt.points = recent.size();
+          } else {
+            attempt.result.message += "; last scans alone: " + r.message;
+            attempt.result.elapsed_s += r.elapsed_s;
+          }
+        }
+        return attempt;
+      });
   return true;
 }
 

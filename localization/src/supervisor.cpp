@@ -100,7 +100,7 @@ bool LocalizationSupervisor::Start(estimation::NavState start, bool gravity_know
     start.p_map_imu.setZero();
     start.v_map_imu.setZero();
     estimator->Initialize(start, uncertainty_.SlamCovariance());
-    BeginSearch(start, static_points_imu, /*is_start=*/true, verdict);
+    BeginSearch(start, static_points_imu, /*is_start=*/true, /*first_attempt_scans=*/0, verdict);
     *why = "no start pose yet (" + std::to_string(scans) + " static scans): " + verdict;
     return false;
   }
@@ -174,7 +174,8 @@ bool LocalizationSupervisor::Supervise(int64_t t_ns, const ScanHealth& health,
   if (global_request_) {
     global_request_ = false;
     relocalize_request_.reset();
-    BeginSearch(estimator->state(), sweep_imu(), /*is_start=*/false,
+    // A standing vehicle tries once it has as many scans as a start.
+    BeginSearch(estimator->state(), sweep_imu(), /*is_start=*/false, options_.init_scans,
                 "global localization requested");
     return false;
   }
@@ -194,7 +195,14 @@ bool LocalizationSupervisor::Supervise(int64_t t_ns, const ScanHealth& health,
   const Eigen::Isometry3d here = lie::ToIsometry(estimator->state().T_map_imu());
   if (Relocalize(sweep, map, here, /*allow_global=*/!CanSearch(), estimator)) return true;
   if (CanSearch()) {
-    BeginSearch(estimator->state(), sweep, /*is_start=*/false,
+    // The state that lost the map (after a gap, a slip or a jump) is not trusted to carry the
+    // provisional frame: its velocity and attitude start again as a moving start's, wide
+    // enough for any ground vehicle, for the scans to correct.
+    estimation::NavState restart = estimator->state();
+    restart.v_map_imu.setZero();
+    estimator->Initialize(restart, uncertainty_.MovingCovariance(restart));
+    // The first attempt at once: a sweep alone often places a vehicle that was carried off.
+    BeginSearch(restart, sweep, /*is_start=*/false, /*first_attempt_scans=*/1,
                 "lost: " + events_.back().message);
     return false;
   }

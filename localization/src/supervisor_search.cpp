@@ -36,16 +36,18 @@ bool LocalizationSupervisor::StartMoving(const estimation::NavState& x,
     return false;
   }
   estimator->Initialize(x, P);
-  BeginSearch(x, points_imu, /*is_start=*/true, reason);
+  BeginSearch(x, points_imu, /*is_start=*/true, /*first_attempt_scans=*/0, reason);
   return true;
 }
 
 void LocalizationSupervisor::BeginSearch(const estimation::NavState& x, const PointCloud& points_imu,
-                                         bool is_start, const std::string& reason) {
+                                         bool is_start, int first_attempt_scans,
+                                         const std::string& reason) {
   search_ = std::make_unique<MovingSearch>(options_.search, search_map_, search_planes_,
                                            options_.global.max_range_m, options_.init_scans);
   search_->Begin(points_imu, lie::ToIsometry(x.T_map_imu()));
   search_is_start_ = is_start;
+  search_first_attempt_scans_ = first_attempt_scans;
   lost_ = false;
   bad_scans_in_row_ = 0;
   AddEvent(LocalizationEvent::Kind::kSearching, x.t_ns,
@@ -58,9 +60,8 @@ LocalizationSupervisor::SearchStep LocalizationSupervisor::Search(
     const registration::NeighborSearch& map, estimation::Estimator* estimator, std::string* why) {
   const estimation::NavState x = estimator->state();
   const Eigen::Isometry3d T_search_imu = lie::ToIsometry(x.T_map_imu());
-  // Begun on request, a standing vehicle tries once it has as many scans as a start.
-  const int first_attempt_scans = search_is_start_ ? 0 : options_.init_scans;
-  const bool due = search_->Add(sweep_imu, map_points_search, T_search_imu, first_attempt_scans);
+  const bool due =
+      search_->Add(sweep_imu, map_points_search, T_search_imu, search_first_attempt_scans_);
   if (!background_) background_ = std::make_unique<BackgroundSearch>(*global_, map);
   if (std::optional<SearchAttempt> done = background_->TakeFinished()) {
     if (Conclude(*done, map, estimator)) return SearchStep::kLocalized;
@@ -88,8 +89,8 @@ LocalizationSupervisor::SearchStep LocalizationSupervisor::Search(
       attempt.attempt = search_->attempts();
       attempt.distance_m = search_->distance_m();
       attempt.scans = search_->scans();
-      background_->Start(std::move(cloud_imu), LevellingRotation(T_search_imu.linear()),
-                         attempt);
+      background_->Start(std::move(cloud_imu), search_->RecentInImu(T_search_imu),
+                         LevellingRotation(T_search_imu.linear()), attempt);
       if (!background_in_use_) {
         background_->Wait();
         if (Conclude(*background_->TakeFinished(), map, estimator)) {
@@ -134,6 +135,7 @@ bool LocalizationSupervisor::Conclude(const SearchAttempt& attempt,
   const Eigen::Isometry3d T_map_imu_now = T_map_search * T_search_imu;
   const IcpInitializerResult recent =
       icp_initializer_.Initialize(search_->RecentInImu(T_search_imu), map, T_map_imu_now);
+  if (attempt.from_recent) os << " on the last " << options_.init_scans << " scans alone";
   if (recent.accepted) {
     os << "; last " << options_.init_scans << " scans: " << recent.message;
     EndSearch(recent.T_map_imu, estimator, os.str(), recent);

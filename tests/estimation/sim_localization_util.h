@@ -45,15 +45,24 @@ class LocalizationSink : public sim::SessionSink {
     }
     return estimate;
   }
-  /// T_map_imu per processed scan, live (the odometry stream).
+  /// T_map_imu per scan placed in the map, live (the odometry stream).
   std::vector<evaluation::TimedPose> LiveEstimate() const {
     std::vector<evaluation::TimedPose> estimate;
-    for (const auto& r : session.results()) {
+    for (const auto& r : results()) {
       estimate.push_back({r.t_ns, Eigen::Isometry3d(r.state.T_map_imu().Matrix())});
     }
     return estimate;
   }
-  const std::vector<odometry::ScanResult>& results() const { return session.results(); }
+  /// The results whose pose is a place in the map (not those of a search or of a lost vehicle).
+  std::vector<odometry::ScanResult> results() const {
+    std::vector<odometry::ScanResult> valid;
+    for (const auto& r : session.results()) {
+      if (r.pose_status == odometry::PoseStatus::kValid) valid.push_back(r);
+    }
+    return valid;
+  }
+  /// Every scan's result, provisional and lost ones included.
+  const std::vector<odometry::ScanResult>& all_results() const { return session.results(); }
 
   run::Session session;
   odometry::OdometryPipeline& pipeline;       // session's

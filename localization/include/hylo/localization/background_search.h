@@ -22,6 +22,7 @@ namespace hylo::localization {
 /// One attempt and where the search frame had the vehicle when its cloud was taken.
 struct SearchAttempt {
   GlobalLocalizationResult result;
+  bool from_recent = false;  ///< the result is the recent scans' (the accumulated cloud's failed)
   Eigen::Isometry3d T_search_imu = Eigen::Isometry3d::Identity();  ///< at the attempt's scan
   int64_t t_ns = 0;          ///< that scan's time, ns
   std::size_t points = 0;    ///< of the attempt's cloud
@@ -41,8 +42,12 @@ class BackgroundSearch {
   BackgroundSearch& operator=(const BackgroundSearch&) = delete;
 
   /// Starts an attempt on `cloud_imu` (IMU frame at `attempt.T_search_imu`) levelled by
-  /// `R_level_imu`; `attempt` carries its bookkeeping. False when one is still running.
-  bool Start(PointCloud cloud_imu, const Eigen::Matrix3d& R_level_imu, SearchAttempt attempt);
+  /// `R_level_imu`; `attempt` carries its bookkeeping. When that cloud places nothing,
+  /// `recent_imu` (the last scans alone, same frame) is tried: the accumulated cloud is the
+  /// more telling one while the provisional odometry holds, the recent scans carry little of
+  /// its drift when it does not. False when an attempt is still running.
+  bool Start(PointCloud cloud_imu, PointCloud recent_imu, const Eigen::Matrix3d& R_level_imu,
+             SearchAttempt attempt);
   /// True while an attempt runs.
   bool Busy() const;
   /// The finished attempt, once; nothing while it runs or when none was started.

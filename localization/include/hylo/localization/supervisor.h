@@ -135,9 +135,10 @@ class LocalizationSupervisor {
   // Searching while moving is possible: enabled, and a global map to search.
   bool CanSearch() const { return options_.search.enabled && global_->available(); }
   // Starts searching while moving from `x` (search frame = the estimator's frame), seeded
-  // with `points_imu`; `reason` says why there is no pose.
+  // with `points_imu`; `reason` says why there is no pose. The first attempt is made after
+  // `first_attempt_scans` scans (0: once the vehicle has moved retry_m).
   void BeginSearch(const estimation::NavState& x, const PointCloud& points_imu, bool is_start,
-                   const std::string& reason);
+                   int first_attempt_scans, const std::string& reason);
   // A finished global attempt: accepted, it places the search frame in the map and the last
   // scans refine the pose now; otherwise an event says why. True when the search ended.
   bool Conclude(const SearchAttempt& attempt, const registration::NeighborSearch& map,
@@ -173,6 +174,7 @@ class LocalizationSupervisor {
   bool background_in_use_ = false;  // attempts run off the scan thread (search.background)
   std::string last_attempt_;        // the last attempt's verdict, for a search that gives up
   bool search_is_start_ = false;          // the search began at the start (not on request)
+  int search_first_attempt_scans_ = 0;    // see BeginSearch
   int bad_scans_in_row_ = 0;
   int scans_until_retry_ = 0;
   bool lost_ = false;
