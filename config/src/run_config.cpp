@@ -142,7 +142,7 @@ RunConfig LoadRunConfig(const std::string& path) {
 
 std::string ToYaml(const RunConfig& config) {
   YAML::Emitter out;
-  out.SetDoublePrecision(10);
+  out.SetDoublePrecision(kYamlDoublePrecision);
   out << YAML::BeginMap;
   RunConfig copy = config;  // the visitor takes fields by non-const reference
   YamlWriteVisitor writer(&out);

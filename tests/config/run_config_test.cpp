@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "test_data.h"
 
@@ -109,6 +110,37 @@ TEST(RunConfig, InvalidValueNamesFieldValueAndConstraint) {
                     {"prior_map", "tile_load_radius_m = -5", ">= 0"});
   ExpectConfigError("prior_map:\n  tile_cache_million_points: 0\n",
                     {"prior_map", "tile_cache_million_points", "> 0"});
+}
+
+// The names an enum's error message offers are exactly names the reader takes.
+TEST(RunConfig, EnumErrorListsNamesTheReaderTakes) {
+  const char* const prefixes[] = {"backend: ",
+                                  "lidar:\n  time_convention: ",
+                                  "sliding_window:\n  linear_solver: ",
+                                  "sliding_window:\n  robust_loss: ",
+                                  "ground:\n  method: ",
+                                  "ground:\n  csf:\n    hole_fill: "};
+  for (const std::string prefix : prefixes) {
+    SCOPED_TRACE(prefix);
+    std::string message;
+    try {
+      ParseRunConfig(prefix + "not_a_name\n", "enum.yaml");
+    } catch (const ConfigError& e) {
+      message = e.what();
+    }
+    const std::size_t from = message.find("expected "), to = message.find("; got");
+    ASSERT_TRUE(from != std::string::npos && to != std::string::npos) << message;
+    std::string names = message.substr(from + 9, to - from - 9);  // "a, b or c"
+    for (std::size_t at; (at = names.find(" or ")) != std::string::npos;) {
+      names.replace(at, 4, ", ");
+    }
+    std::istringstream list(names);
+    int count = 0;
+    for (std::string name; std::getline(list >> std::ws, name, ','); ++count) {
+      EXPECT_NO_THROW(ParseRunConfig(prefix + name + "\n", "enum.yaml")) << name;
+    }
+    EXPECT_GE(count, 2) << message;
+  }
 }
 
 TEST(RunConfig, MalformedYamlIsAnError) {
