@@ -112,6 +112,41 @@ TEST(RunConfig, InvalidValueNamesFieldValueAndConstraint) {
                     {"prior_map", "tile_cache_million_points", "> 0"});
 }
 
+// yaml-cpp keeps both entries of a repeated key and a lookup finds one: the file would say two
+// things and the run would silently use one of them.
+TEST(RunConfig, KeyGivenTwiceIsAnErrorNamingBothLines) {
+  ExpectConfigError("backend: ieskf\nlidar: {topic: /a}\nbackend: sliding_window\n",
+                    {"test.yaml", "backend", "given twice", "line 1 and line 3"});
+  ExpectConfigError("imu:\n  noise:\n    gyro_noise_density: 1e-4\n"
+                    "    accel_noise_density: 1e-3\n    gyro_noise_density: 2e-4\n",
+                    {"test.yaml", "imu.noise.gyro_noise_density", "line 3 and line 5"});
+  ExpectConfigError("lidar: {topic: /a, topic: /b}\n",
+                    {"lidar.topic", "given twice", "line 1, columns 9 and 20"});
+  // A repeated unknown key is reported as repeated, before it is reported as unknown.
+  ExpectConfigError("preprocess:\n  extra: 1\n  extra: 2\n",
+                    {"preprocess.extra", "line 2 and line 3"});
+  // Inside a list, as deep as a file nests.
+  ExpectConfigError("a: [{b: 1}, {c: 1, c: 2}]\n", {"a[1].c", "given twice"});
+}
+
+TEST(RunConfig, SameKeyInDifferentSectionsIsFine) {
+  const RunConfig config = ParseRunConfig(
+      "lidar: {topic: /points_a}\nimu: {topic: /imu_a}\n"
+      "localization:\n  min_inlier_ratio: 0.5\n  icp: {min_inlier_ratio: 0.6}\n",
+      "test.yaml");
+  EXPECT_EQ(config.lidar.topic, "/points_a");
+  EXPECT_EQ(config.imu.topic, "/imu_a");
+  EXPECT_DOUBLE_EQ(config.pipeline.localization.min_inlier_ratio, 0.5);
+  EXPECT_DOUBLE_EQ(config.pipeline.localization.icp.min_inlier_ratio, 0.6);
+}
+
+// An alias can make a node its own child; the duplicate check walks it once and the reader
+// reports the key.
+TEST(RunConfig, SelfReferencingAliasEndsInAnError) {
+  ExpectConfigError("a: &x [*x]\n", {"test.yaml", "unknown key"});
+  ExpectConfigError("lidar: &x {topic: /p, more: *x}\n", {"lidar.more", "unknown key"});
+}
+
 // The names an enum's error message offers are exactly names the reader takes.
 TEST(RunConfig, EnumErrorListsNamesTheReaderTakes) {
   const char* const prefixes[] = {"backend: ",
