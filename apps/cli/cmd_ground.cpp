@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "hylo/config/config_json.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/progress.h"
 #include "hylo/io/text.h"
@@ -27,42 +28,6 @@ struct GroundArgs {
   bool vertical_distance = false;
   std::string hole_fill = terrain::ToString(terrain::GroundFilterOptions().csf.hole_fill);
 };
-
-io::Json CsfOptionsJson(const GroundArgs& args) {
-  const terrain::ClothFilterOptions& o = args.options.csf;
-  io::Json opt = io::Json::object();
-  opt["cloth_resolution_m"] = o.cloth_resolution_m;
-  opt["rigidness"] = o.rigidness;
-  opt["time_step"] = o.time_step;
-  opt["max_iterations"] = o.max_iterations;
-  opt["class_threshold_m"] = o.class_threshold_m;
-  opt["class_distance_along_normal"] = o.class_distance_along_normal;
-  opt["slope_smoothing"] = o.slope_smoothing;
-  opt["slope_height_threshold_m"] = o.slope_height_threshold_m;
-  opt["slope_max_cloth_gap_m"] = o.slope_max_cloth_gap_m;  // null when infinite (no test)
-  opt["slope_min_region_particles"] = o.slope_min_region_particles;
-  opt["convergence_threshold_m"] = o.convergence_threshold_m;
-  opt["hole_fill"] = args.hole_fill;
-  opt["low_outlier_depth_m"] = o.low_outlier_depth_m;
-  opt["low_outlier_cell_m"] = o.low_outlier_cell_m;
-  opt["low_outlier_min_support"] = o.low_outlier_min_support;
-  opt["low_outlier_max_fraction"] = o.low_outlier_max_fraction;
-  opt["gravity"] = o.gravity;
-  return opt;
-}
-
-io::Json SmrfOptionsJson(const terrain::SmrfOptions& o) {
-  io::Json opt = io::Json::object();
-  opt["cell_m"] = o.cell_m;
-  opt["slope"] = o.slope;
-  opt["max_window_m"] = o.max_window_m;
-  opt["elevation_threshold_m"] = o.elevation_threshold_m;
-  opt["elevation_scaler"] = o.elevation_scaler;
-  opt["low_outlier_slope"] = o.low_outlier_slope;
-  opt["low_outlier_window_m"] = o.low_outlier_window_m;
-  opt["max_cells"] = o.max_cells;
-  return opt;
-}
 
 // What the back-end reports beyond the point counts.
 io::Json StatsJson(const terrain::GroundFilterResult& r) {
@@ -93,8 +58,9 @@ io::Json SummaryJson(const GroundArgs& args, const terrain::GroundFilterResult& 
   j["out_ground"] = args.ground_path;
   j["out_objects"] = args.objects_path;
   j["method"] = terrain::ToString(r.method);
-  j["options"] = r.method == terrain::GroundMethod::kCsf ? CsfOptionsJson(args)
-                                                         : SmrfOptionsJson(args.options.smrf);
+  // The back-end's options as the configuration's ground section names them.
+  j["options"] = r.method == terrain::GroundMethod::kCsf ? config::ToJson(args.options.csf)
+                                                         : config::ToJson(args.options.smrf);
   io::Json& p = j["points"];
   p["ground"] = r.num_ground;
   p["objects"] = r.num_objects;

@@ -10,6 +10,7 @@
 #include "hylo/common/option_checks.h"
 #include "hylo/io/atomic_file.h"
 #include "hylo/localization/pose_guess.h"
+#include "duplicate_keys.h"
 #include "run_config_fields.h"
 #include "yaml_visitors.h"
 
@@ -124,6 +125,7 @@ RunConfig ParseRunConfig(const std::string& yaml_text, const std::string& source
   RunConfig config;
   if (root.IsNull()) return config;  // an empty file keeps every default
   if (!root.IsMap()) throw ConfigError(source_name + ": expected a map of keys at the top level");
+  RejectDuplicateKeys(root, source_name);
   YamlReadVisitor reader(root, "", source_name);
   VisitFields(reader, config);
   reader.RejectUnknownKeys();
@@ -142,7 +144,7 @@ RunConfig LoadRunConfig(const std::string& path) {
 
 std::string ToYaml(const RunConfig& config) {
   YAML::Emitter out;
-  out.SetDoublePrecision(10);
+  out.SetDoublePrecision(kYamlDoublePrecision);
   out << YAML::BeginMap;
   RunConfig copy = config;  // the visitor takes fields by non-const reference
   YamlWriteVisitor writer(&out);

@@ -1,9 +1,8 @@
 #include "yaml_visitors.h"
 
-#include <initializer_list>
 #include <sstream>
 
-#include "run_config_fields.h"
+#include "config_sections.h"
 
 namespace hylo::config {
 namespace {
@@ -13,19 +12,6 @@ std::string Describe(const YAML::Node& node) {
   if (node.IsSequence()) return "a list";
   if (node.IsMap()) return "a map";
   return "nothing";
-}
-
-// "expected a, b or c": the names of every value of an enum, from the library's own ToString.
-template <class E>
-std::string Expected(std::initializer_list<E> values) {
-  std::string list = "expected ";
-  std::size_t i = 0;
-  for (E e : values) {
-    if (i > 0) list += i + 1 == values.size() ? " or " : ", ";
-    list += estimation::ToString(e);
-    ++i;
-  }
-  return list;
 }
 
 }  // namespace
@@ -142,53 +128,9 @@ void YamlReadVisitor::Convert(const YAML::Node& node, const std::string& key_pat
                                       &(*value)[i]);
 }
 
-void YamlReadVisitor::Convert(const YAML::Node& node, const std::string& key_path,
-                              logs::PointTimeConvention* value) const {
-  if (!node.IsScalar() || !logs::ParsePointTimeConvention(node.Scalar(), value)) {
-    Fail(key_path, "expected one of auto, velodyne, ouster, hesai, robosense, livox, none; got " +
-                       Describe(node));
-  }
-}
-
-void YamlReadVisitor::Convert(const YAML::Node& node, const std::string& key_path,
-                              estimation::Estimator::Backend* value) const {
-  using B = estimation::Estimator::Backend;
-  if (!node.IsScalar() || !estimation::ParseBackend(node.Scalar(), value)) {
-    Fail(key_path, Expected({B::kIeskf, B::kSlidingWindow}) + "; got " + Describe(node));
-  }
-}
-
-void YamlReadVisitor::Convert(const YAML::Node& node, const std::string& key_path,
-                              estimation::SlidingWindowOptions::LinearSolver* value) const {
-  using S = estimation::SlidingWindowOptions::LinearSolver;
-  if (!node.IsScalar() || !estimation::ParseLinearSolver(node.Scalar(), value)) {
-    Fail(key_path, Expected({S::kSparseNormalCholesky, S::kDenseNormalCholesky, S::kDenseSchur,
-                             S::kSparseSchur, S::kDenseQr}) +
-                       "; got " + Describe(node));
-  }
-}
-
-void YamlReadVisitor::Convert(const YAML::Node& node, const std::string& key_path,
-                              estimation::SlidingWindowOptions::RobustLoss* value) const {
-  using L = estimation::SlidingWindowOptions::RobustLoss;
-  if (!node.IsScalar() || !estimation::ParseRobustLoss(node.Scalar(), value)) {
-    Fail(key_path,
-         Expected({L::kNone, L::kHuber, L::kCauchy, L::kGemanMcClure}) + "; got " + Describe(node));
-  }
-}
-
-void YamlReadVisitor::Convert(const YAML::Node& node, const std::string& key_path,
-                              terrain::GroundMethod* value) const {
-  if (!node.IsScalar() || !terrain::ParseGroundMethod(node.Scalar(), value)) {
-    Fail(key_path, "expected smrf or csf; got " + Describe(node));
-  }
-}
-
-void YamlReadVisitor::Convert(const YAML::Node& node, const std::string& key_path,
-                              terrain::ClothHoleFill* value) const {
-  if (!node.IsScalar() || !terrain::ParseClothHoleFill(node.Scalar(), value)) {
-    Fail(key_path, "expected mean, nearest or reference; got " + Describe(node));
-  }
+void YamlReadVisitor::FailEnum(const YAML::Node& node, const std::string& key_path,
+                               const std::vector<std::string>& names) const {
+  Fail(key_path, "expected " + JoinAlternatives(names) + "; got " + Describe(node));
 }
 
 }  // namespace hylo::config

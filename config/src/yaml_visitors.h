@@ -1,12 +1,16 @@
 #pragma once
-// The two visitors that walk run_config_fields.h: one reads a YAML node into the structs
-// (tracking which keys it used, so every other key is reported), one writes them back.
+// The two YAML visitors that walk run_config_fields.h: one reads a YAML node into the structs
+// (tracking which keys it used, so every other key is reported), one writes them back. The
+// descriptions the field list carries are for the reference doc; both ignore them.
 
 #include <yaml-cpp/yaml.h>
 
 #include <set>
 #include <string>
+#include <type_traits>
+#include <vector>
 
+#include "enum_fields.h"
 #include "hylo/config/run_config.h"
 
 namespace hylo::config {
@@ -17,14 +21,14 @@ class YamlReadVisitor {
       : node_(std::move(node)), path_(std::move(path)), source_(std::move(source)) {}
 
   template <class T>
-  void operator()(const char* key, T& value) {
+  void operator()(const char* key, T& value, const char* /*description*/) {
     used_.insert(key);
     const YAML::Node child = node_[key];
     if (child.IsDefined() && !child.IsNull()) Convert(child, Join(key), &value);
   }
 
   template <class S>
-  void Section(const char* key, S& section) {
+  void Section(const char* key, S& section, const char* /*description*/) {
     used_.insert(key);
     const YAML::Node child = node_[key];
     if (!child.IsDefined() || child.IsNull()) return;
@@ -35,7 +39,7 @@ class YamlReadVisitor {
   }
 
   template <class S>
-  void OptionalSection(const char* key, S& section, bool& enabled) {
+  void OptionalSection(const char* key, S& section, bool& enabled, const char* description) {
     const YAML::Node child = node_[key];
     if (child.IsDefined() && child.IsScalar() && child.Scalar() == "none") {
       used_.insert(key);
@@ -43,7 +47,7 @@ class YamlReadVisitor {
       return;
     }
     enabled = true;
-    Section(key, section);
+    Section(key, section, description);
   }
 
   /// Throws ConfigError for the first key of this map that no field consumed.
@@ -58,18 +62,14 @@ class YamlReadVisitor {
   void Convert(const YAML::Node& node, const std::string& key_path, bool* value) const;
   void Convert(const YAML::Node& node, const std::string& key_path, std::string* value) const;
   void Convert(const YAML::Node& node, const std::string& key_path, Eigen::Vector3d* value) const;
-  void Convert(const YAML::Node& node, const std::string& key_path,
-               logs::PointTimeConvention* value) const;
-  void Convert(const YAML::Node& node, const std::string& key_path,
-               estimation::Estimator::Backend* value) const;
-  void Convert(const YAML::Node& node, const std::string& key_path,
-               estimation::SlidingWindowOptions::LinearSolver* value) const;
-  void Convert(const YAML::Node& node, const std::string& key_path,
-               estimation::SlidingWindowOptions::RobustLoss* value) const;
-  void Convert(const YAML::Node& node, const std::string& key_path,
-               terrain::GroundMethod* value) const;
-  void Convert(const YAML::Node& node, const std::string& key_path,
-               terrain::ClothHoleFill* value) const;
+  template <class E, std::enable_if_t<std::is_enum_v<E>, int> = 0>
+  void Convert(const YAML::Node& node, const std::string& key_path, E* value) const {
+    if (!node.IsScalar() || !EnumField<E>::Parse(node.Scalar(), value)) {
+      FailEnum(node, key_path, EnumNames<E>());
+    }
+  }
+  [[noreturn]] void FailEnum(const YAML::Node& node, const std::string& key_path,
+                             const std::vector<std::string>& names) const;
 
   YAML::Node node_;
   std::string path_;
@@ -77,51 +77,49 @@ class YamlReadVisitor {
   std::set<std::string> used_;
 };
 
+/// One value as the YAML writer emits it (a flow list for vectors, names for enums).
+inline void EmitYaml(YAML::Emitter* out, double value) { *out << value; }
+inline void EmitYaml(YAML::Emitter* out, int value) { *out << value; }
+inline void EmitYaml(YAML::Emitter* out, bool value) { *out << value; }
+inline void EmitYaml(YAML::Emitter* out, const std::string& value) { *out << value; }
+inline void EmitYaml(YAML::Emitter* out, const Eigen::Vector3d& value) {
+  *out << YAML::Flow << YAML::BeginSeq << value.x() << value.y() << value.z() << YAML::EndSeq;
+}
+template <class E, std::enable_if_t<std::is_enum_v<E>, int> = 0>
+void EmitYaml(YAML::Emitter* out, E value) {
+  *out << EnumField<E>::Name(value);
+}
+
+/// The digits every written configuration keeps: enough that a value loads back unchanged.
+constexpr int kYamlDoublePrecision = 10;
+
 class YamlWriteVisitor {
  public:
   explicit YamlWriteVisitor(YAML::Emitter* out) : out_(out) {}
 
   template <class T>
-  void operator()(const char* key, T& value) {
+  void operator()(const char* key, T& value, const char* /*description*/) {
     *out_ << YAML::Key << key << YAML::Value;
-    Emit(value);
+    EmitYaml(out_, value);
   }
 
   template <class S>
-  void Section(const char* key, S& section) {
+  void Section(const char* key, S& section, const char* /*description*/) {
     *out_ << YAML::Key << key << YAML::Value << YAML::BeginMap;
     VisitFields(*this, section);
     *out_ << YAML::EndMap;
   }
 
   template <class S>
-  void OptionalSection(const char* key, S& section, bool& enabled) {
+  void OptionalSection(const char* key, S& section, bool& enabled, const char* description) {
     if (enabled) {
-      Section(key, section);
+      Section(key, section, description);
     } else {
       *out_ << YAML::Key << key << YAML::Value << "none";
     }
   }
 
  private:
-  void Emit(double value) { *out_ << value; }
-  void Emit(int value) { *out_ << value; }
-  void Emit(bool value) { *out_ << value; }
-  void Emit(const std::string& value) { *out_ << value; }
-  void Emit(const Eigen::Vector3d& value) {
-    *out_ << YAML::Flow << YAML::BeginSeq << value.x() << value.y() << value.z() << YAML::EndSeq;
-  }
-  void Emit(logs::PointTimeConvention value) { *out_ << logs::ToString(value); }
-  void Emit(estimation::Estimator::Backend value) { *out_ << estimation::ToString(value); }
-  void Emit(estimation::SlidingWindowOptions::LinearSolver value) {
-    *out_ << estimation::ToString(value);
-  }
-  void Emit(estimation::SlidingWindowOptions::RobustLoss value) {
-    *out_ << estimation::ToString(value);
-  }
-  void Emit(terrain::GroundMethod value) { *out_ << terrain::ToString(value); }
-  void Emit(terrain::ClothHoleFill value) { *out_ << terrain::ToString(value); }
-
   YAML::Emitter* out_;
 };
 

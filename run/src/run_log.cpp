@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "hylo/common/time.h"
+#include "hylo/config/config_json.h"
 #include "hylo/odometry/odometry_pipeline.h"
 #include "hylo/evaluation/cloud_distance.h"
 #include "hylo/io/cloud_io.h"
@@ -262,6 +263,8 @@ RunResult RunLog(const RunRequest& request) {
                     static_cast<std::size_t>(config.prior_map.tile_cache_million_points * 1e6));
     j["c2c"] = CloudToCloudJson(dense, *reference, request.c2c_max_distance_m);
   }
+  // The effective configuration beside the figures it produced (config.yaml holds the same).
+  j["config"] = config::ToJson(config);
   io::WriteJsonFile(request.out_dir + "/summary.json", j);
   return run;
 }

@@ -112,6 +112,7 @@ TEST_F(MappingCliTest, GroundSplitsTheBuildingOffWithEitherBackEnd) {
   const std::string paper = ReadText(Path("paper.json"));
   EXPECT_NE(paper.find("\"method\": \"csf\""), std::string::npos) << paper;
   EXPECT_NE(paper.find("\"hole_fill\": \"mean\""), std::string::npos) << paper;
+  EXPECT_NE(paper.find("\"damping\""), std::string::npos) << "every option, from the field list";
 }
 
 TEST_F(MappingCliTest, CraftThenTraversabilityWriteTheirFiles) {

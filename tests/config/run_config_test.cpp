@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "test_data.h"
 
@@ -109,6 +110,72 @@ TEST(RunConfig, InvalidValueNamesFieldValueAndConstraint) {
                     {"prior_map", "tile_load_radius_m = -5", ">= 0"});
   ExpectConfigError("prior_map:\n  tile_cache_million_points: 0\n",
                     {"prior_map", "tile_cache_million_points", "> 0"});
+}
+
+// yaml-cpp keeps both entries of a repeated key and a lookup finds one: the file would say two
+// things and the run would silently use one of them.
+TEST(RunConfig, KeyGivenTwiceIsAnErrorNamingBothLines) {
+  ExpectConfigError("backend: ieskf\nlidar: {topic: /a}\nbackend: sliding_window\n",
+                    {"test.yaml", "backend", "given twice", "line 1 and line 3"});
+  ExpectConfigError("imu:\n  noise:\n    gyro_noise_density: 1e-4\n"
+                    "    accel_noise_density: 1e-3\n    gyro_noise_density: 2e-4\n",
+                    {"test.yaml", "imu.noise.gyro_noise_density", "line 3 and line 5"});
+  ExpectConfigError("lidar: {topic: /a, topic: /b}\n",
+                    {"lidar.topic", "given twice", "line 1, columns 9 and 20"});
+  // A repeated unknown key is reported as repeated, before it is reported as unknown.
+  ExpectConfigError("preprocess:\n  extra: 1\n  extra: 2\n",
+                    {"preprocess.extra", "line 2 and line 3"});
+  // Inside a list, as deep as a file nests.
+  ExpectConfigError("a: [{b: 1}, {c: 1, c: 2}]\n", {"a[1].c", "given twice"});
+}
+
+TEST(RunConfig, SameKeyInDifferentSectionsIsFine) {
+  const RunConfig config = ParseRunConfig(
+      "lidar: {topic: /points_a}\nimu: {topic: /imu_a}\n"
+      "localization:\n  min_inlier_ratio: 0.5\n  icp: {min_inlier_ratio: 0.6}\n",
+      "test.yaml");
+  EXPECT_EQ(config.lidar.topic, "/points_a");
+  EXPECT_EQ(config.imu.topic, "/imu_a");
+  EXPECT_DOUBLE_EQ(config.pipeline.localization.min_inlier_ratio, 0.5);
+  EXPECT_DOUBLE_EQ(config.pipeline.localization.icp.min_inlier_ratio, 0.6);
+}
+
+// An alias can make a node its own child; the duplicate check walks it once and the reader
+// reports the key.
+TEST(RunConfig, SelfReferencingAliasEndsInAnError) {
+  ExpectConfigError("a: &x [*x]\n", {"test.yaml", "unknown key"});
+  ExpectConfigError("lidar: &x {topic: /p, more: *x}\n", {"lidar.more", "unknown key"});
+}
+
+// The names an enum's error message offers are exactly names the reader takes.
+TEST(RunConfig, EnumErrorListsNamesTheReaderTakes) {
+  const char* const prefixes[] = {"backend: ",
+                                  "lidar:\n  time_convention: ",
+                                  "sliding_window:\n  linear_solver: ",
+                                  "sliding_window:\n  robust_loss: ",
+                                  "ground:\n  method: ",
+                                  "ground:\n  csf:\n    hole_fill: "};
+  for (const std::string prefix : prefixes) {
+    SCOPED_TRACE(prefix);
+    std::string message;
+    try {
+      ParseRunConfig(prefix + "not_a_name\n", "enum.yaml");
+    } catch (const ConfigError& e) {
+      message = e.what();
+    }
+    const std::size_t from = message.find("expected "), to = message.find("; got");
+    ASSERT_TRUE(from != std::string::npos && to != std::string::npos) << message;
+    std::string names = message.substr(from + 9, to - from - 9);  // "a, b or c"
+    for (std::size_t at; (at = names.find(" or ")) != std::string::npos;) {
+      names.replace(at, 4, ", ");
+    }
+    std::istringstream list(names);
+    int count = 0;
+    for (std::string name; std::getline(list >> std::ws, name, ','); ++count) {
+      EXPECT_NO_THROW(ParseRunConfig(prefix + name + "\n", "enum.yaml")) << name;
+    }
+    EXPECT_GE(count, 2) << message;
+  }
 }
 
 TEST(RunConfig, MalformedYamlIsAnError) {

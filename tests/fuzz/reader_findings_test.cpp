@@ -261,5 +261,17 @@ TEST(ReaderFindings, ConfigurationKeyThatIsAListIsAConfigError) {
   }
 }
 
+// A key given twice was silently resolved to one of its values; and an alias inside itself
+// must not send the duplicate check round in circles.
+TEST(ReaderFindings, ConfigurationKeyGivenTwiceIsAConfigError) {
+  ExpectOneLineNaming(ErrorOf<config::ConfigError>([] {
+                        config::ParseRunConfig("lidar:\n  topic: /a\n  topic: /b\n", "twice.yaml");
+                      }),
+                      "twice.yaml", "lidar.topic: the key is given twice (line 2 and line 3)");
+  ExpectOneLineNaming(
+      ErrorOf<config::ConfigError>([] { config::ParseRunConfig("a: &x [*x]\n", "alias.yaml"); }),
+      "alias.yaml", "unknown key");
+}
+
 }  // namespace
 }  // namespace hylo
