@@ -21,6 +21,7 @@ void AddTraversabilityCommand(CLI::App& root);
 void AddEvalCommand(CLI::App& root);
 void AddCompareCommand(CLI::App& root);
 void AddDemoCommand(CLI::App& root);
+void AddConvertCommand(CLI::App& root);
 
 /// Writes `summary` to `path` when the user passed --json (path non-empty).
 void MaybeWriteJson(const std::string& path, const io::Json& summary);

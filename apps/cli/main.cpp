@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   hylo::cli::AddEvalCommand(app);
   hylo::cli::AddCompareCommand(app);
   hylo::cli::AddDemoCommand(app);
+  hylo::cli::AddConvertCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
