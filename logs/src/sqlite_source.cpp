@@ -75,6 +75,9 @@ class SqliteSource : public StorageSource {
     db_.reset(db);
     if (rc != SQLITE_OK) Fail(std::string("cannot be opened (") + sqlite3_errstr(rc) + ")");
     if (announced > file_bytes_) {
+      // sqlite refuses a file shorter than its header announces unless told to read what is
+      // there; the pages past the end then read as corrupt, where reading stops.
+      sqlite3_exec(db_.get(), "PRAGMA writable_schema = ON", nullptr, nullptr, nullptr);
       recovery_.emplace();
       recovery_->damage = "database cut short (" + std::to_string(file_bytes_) + " of " +
                           std::to_string(announced) + " bytes)";
@@ -91,7 +94,7 @@ class SqliteSource : public StorageSource {
     if (rc != SQLITE_ROW) return Damaged(sqlite3_errmsg(db_.get()));
     const auto topic = topics_.find(sqlite3_column_int64(statement_.get(), 0));
     if (topic == topics_.end()) {
-      if (recovery_) return Damaged("a message of a topic id the topics table lacks");
+      if (recovery_) return Damaged("a row that cannot be read (its topic id is unknown)");
       Fail("a message of a topic id the topics table lacks");
     }
     message->topic = &topic->second;
