@@ -56,14 +56,13 @@ void Run(const ConvertArgs& args) {
   }
   const auto start = std::chrono::steady_clock::now();
   io::Progress progress("convert", 0);
-  const logs::ConvertSummary s =
-      logs::ConvertLog(args.in, args.out, format, ReadOptions(args),
-                       [&](std::size_t n) { progress.Update(n); });
+  const logs::ConvertSummary s = logs::ConvertLog(args.in, args.out, format, ReadOptions(args),
+                                                  [&](std::size_t n) { progress.Update(n); });
   progress.Finish();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("%s -> %s (%s): %zu scans (%s layout), %zu IMU samples in %.2f s\n",
-              args.in.c_str(), args.out.c_str(), logs::ToString(format).c_str(), s.scans,
+  std::printf("%s -> %s (%s): %zu scans (%s layout), %zu IMU samples in %.2f s\n", args.in.c_str(),
+              args.out.c_str(), logs::ToString(format).c_str(), s.scans,
               logs::ToString(s.layout).c_str(), s.imu_samples, seconds);
   const logs::LogReadCounters& c = s.counters;
   if (c.dropped_non_finite_points + c.dropped_non_finite_imu > 0) {

@@ -103,12 +103,12 @@ PointCloud2Message DecodeCdrLivoxCustom(const uint8_t* data, std::size_t size) {
   PointCloud2Message cloud;
   cloud.stamp_ns = ReadHeader(&in, &cloud.frame_id);
   const uint64_t timebase_ns = in.Read<uint64_t>();
-  in.Read<uint32_t>();      // point_num: the sequence's own length is what the bytes hold
-  in.Skip(1 + 3, 1);        // lidar_id, rsvd[3]
+  in.Read<uint32_t>();  // point_num: the sequence's own length is what the bytes hold
+  in.Skip(1 + 3, 1);    // lidar_id, rsvd[3]
   const uint32_t n = in.ReadSequenceLength(kMinCustomPointBytes);
   cloud.height = 1;
   cloud.width = n;
-  cloud.fields = {{"x", kFloat32, 0, 1},   {"y", kFloat32, 4, 1},   {"z", kFloat32, 8, 1},
+  cloud.fields = {{"x", kFloat32, 0, 1},          {"y", kFloat32, 4, 1},  {"z", kFloat32, 8, 1},
                   {"intensity", kFloat32, 12, 1}, {"tag", kUint8, 16, 1}, {"line", kUint8, 17, 1},
                   {"timestamp", kFloat64, 18, 1}};
   cloud.point_step = kLivoxPointStep;
@@ -122,8 +122,8 @@ PointCloud2Message DecodeCdrLivoxCustom(const uint8_t* data, std::size_t size) {
     Put(p + 4, in.Read<float>());
     Put(p + 8, in.Read<float>());
     Put(p + 12, static_cast<float>(in.Read<uint8_t>()));  // reflectivity
-    p[16] = in.Read<uint8_t>();                            // tag
-    p[17] = in.Read<uint8_t>();                            // line
+    p[16] = in.Read<uint8_t>();                           // tag
+    p[17] = in.Read<uint8_t>();                           // line
     Put(p + 18, static_cast<double>(timebase_ns + offset_time_ns));
   }
   return cloud;

@@ -74,8 +74,8 @@ class CdrReader {
   uint32_t ReadSequenceLength(std::size_t min_element_bytes) {
     const uint32_t count = Read<uint32_t>();
     if (uint64_t{count} * min_element_bytes > size_ - pos_) {
-      throw CdrError("a sequence announces " + std::to_string(count) + " elements, the message has " +
-                     std::to_string(size_ - pos_) + " bytes left");
+      throw CdrError("a sequence announces " + std::to_string(count) +
+                     " elements, the message has " + std::to_string(size_ - pos_) + " bytes left");
     }
     return count;
   }

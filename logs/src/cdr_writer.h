@@ -38,7 +38,9 @@ class CdrWriter {
 
   void WriteSequenceLength(std::size_t count) { Write(static_cast<uint32_t>(count)); }
 
-  void WriteBytes(const uint8_t* data, std::size_t n) { bytes_.insert(bytes_.end(), data, data + n); }
+  void WriteBytes(const uint8_t* data, std::size_t n) {
+    bytes_.insert(bytes_.end(), data, data + n);
+  }
 
   std::vector<uint8_t> Take() { return std::move(bytes_); }
 

@@ -13,11 +13,16 @@ constexpr LogFormat kFormats[] = {LogFormat::kRos1, LogFormat::kSqlite3, LogForm
 
 std::string ToString(LogFormat format) {
   switch (format) {
-    case LogFormat::kRos1: return "ros1";
-    case LogFormat::kSqlite3: return "sqlite3";
-    case LogFormat::kMcap: return "mcap";
-    case LogFormat::kMcapZstd: return "mcap-zstd";
-    case LogFormat::kMcapLz4: return "mcap-lz4";
+    case LogFormat::kRos1:
+      return "ros1";
+    case LogFormat::kSqlite3:
+      return "sqlite3";
+    case LogFormat::kMcap:
+      return "mcap";
+    case LogFormat::kMcapZstd:
+      return "mcap-zstd";
+    case LogFormat::kMcapLz4:
+      return "mcap-lz4";
   }
   return "unknown";
 }
@@ -46,7 +51,8 @@ void LogWriter::WriteScan(const std::string& topic, const LidarScan& scan,
 std::unique_ptr<LogWriter> CreateLogWriter(const std::string& path, LogFormat format) {
   if (format == LogFormat::kRos1) return std::make_unique<BagWriter>(path);
   Rosbag2WriterOptions options;
-  options.storage = format == LogFormat::kSqlite3 ? Rosbag2Storage::kSqlite3 : Rosbag2Storage::kMcap;
+  options.storage =
+      format == LogFormat::kSqlite3 ? Rosbag2Storage::kSqlite3 : Rosbag2Storage::kMcap;
   options.mcap_compression = format == LogFormat::kMcapZstd  ? "zstd"
                              : format == LogFormat::kMcapLz4 ? "lz4"
                                                              : "";

@@ -7,6 +7,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include "printable.h"
+
 namespace hylo::logs::detail {
 namespace {
 
@@ -69,10 +71,10 @@ bool Drain(const std::string& codec, uint64_t size, std::size_t n, bool complete
   return ok;
 }
 
-bool Zstd(const uint8_t* in, std::size_t n, uint64_t size, bool complete,
-          std::vector<uint8_t>* out, std::string* why) {
+bool Zstd(const uint8_t* in, std::size_t n, uint64_t size, bool complete, std::vector<uint8_t>* out,
+          std::string* why) {
   std::unique_ptr<ZSTD_DStream, decltype(&ZSTD_freeDStream)> stream(ZSTD_createDStream(),
-                                                                     &ZSTD_freeDStream);
+                                                                    &ZSTD_freeDStream);
   if (!stream || ZSTD_isError(ZSTD_initDStream(stream.get()))) {
     *why = "zstd: cannot start the decoder";
     return false;
@@ -129,8 +131,8 @@ bool DecompressMcapChunk(const std::string& compression, const uint8_t* in, std:
   out->clear();
   if (compression.empty()) {
     if (complete && n != size) {
-      *why = "records of " + std::to_string(n) + " bytes, the chunk announces " +
-             std::to_string(size);
+      *why =
+          "records of " + std::to_string(n) + " bytes, the chunk announces " + std::to_string(size);
       return false;
     }
     out->assign(in, in + n);
@@ -142,7 +144,7 @@ bool DecompressMcapChunk(const std::string& compression, const uint8_t* in, std:
   }
   if (compression == "zstd") return Zstd(in, n, size, complete, out, why);
   if (compression == "lz4") return Lz4(in, n, size, complete, out, why);
-  *why = "unknown chunk compression '" + compression + "'";
+  *why = "unknown chunk compression '" + Printable(compression) + "'";
   return false;
 }
 

@@ -17,8 +17,7 @@ namespace hylo::logs::detail {
 /// Returns false with `*why` for an unknown codec, corrupt data, or (complete data) a stream
 /// that ends early or decodes to another size than announced.
 bool DecompressMcapChunk(const std::string& compression, const uint8_t* in, std::size_t n,
-                         uint64_t size, bool complete, std::vector<uint8_t>* out,
-                         std::string* why);
+                         uint64_t size, bool complete, std::vector<uint8_t>* out, std::string* why);
 
 /// Compresses `n` bytes with "zstd" or "lz4" into `out` (replacing its content); "" copies them.
 void CompressMcapChunk(const std::string& compression, const uint8_t* in, std::size_t n,

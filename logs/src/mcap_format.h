@@ -153,8 +153,8 @@ struct McapChunkHeader {
 struct McapChunkIndex {
   uint64_t message_start_time = 0;
   uint64_t message_end_time = 0;
-  uint64_t chunk_start_offset = 0;  ///< file offset of the Chunk record
-  uint64_t chunk_length = 0;        ///< with opcode and length
+  uint64_t chunk_start_offset = 0;                     ///< file offset of the Chunk record
+  uint64_t chunk_length = 0;                           ///< with opcode and length
   std::map<uint16_t, uint64_t> message_index_offsets;  ///< channel -> Message Index record
   uint64_t message_index_length = 0;
   std::string compression;

@@ -84,7 +84,8 @@ void McapIndexedReader::LoadChunk(const McapChunkIndex& index) {
         const McapMessageRecord m = ParseMcapMessage(at, n);
         if (summary_.channels.count(m.channel_id) == 0) Fail(index, "a message of no channel");
         pending_.push({m.log_time, loaded_++, m.channel_id, records,
-                       static_cast<std::size_t>(m.data - r.data()), static_cast<std::size_t>(m.size)});
+                       static_cast<std::size_t>(m.data - r.data()),
+                       static_cast<std::size_t>(m.size)});
       } else if (op == kMcapChannel) {
         McapChannel c = ParseMcapChannel(at, n);
         summary_.channels.emplace(c.id, std::move(c));

@@ -119,9 +119,9 @@ class McapLinearScanner {
   std::size_t chunk_pos_ = 0;
   bool in_chunk_ = false;
   bool chunk_cut_ = false;
-  bool chunk_stored_ = false;        // records stored uncompressed: each has a file offset
-  uint64_t chunk_records_at_ = 0;    // file offset of a stored chunk's records
-  uint64_t chunk_end_ = 0;           // file offset past the chunk record
+  bool chunk_stored_ = false;      // records stored uncompressed: each has a file offset
+  uint64_t chunk_records_at_ = 0;  // file offset of a stored chunk's records
+  uint64_t chunk_end_ = 0;         // file offset past the chunk record
 };
 
 /// Reads a file with a summary in log-time order (ties: chunk order, then record order).

@@ -16,9 +16,9 @@
 namespace hylo::logs::detail {
 
 struct McapWriterOptions {
-  std::string compression;             ///< chunk compression: "" (stored), "zstd" or "lz4"
-  uint64_t chunk_bytes = 768 * 1024;   ///< uncompressed records per chunk (rosbag2's default)
-  std::string profile = "ros2";        ///< the Header's profile
+  std::string compression;            ///< chunk compression: "" (stored), "zstd" or "lz4"
+  uint64_t chunk_bytes = 768 * 1024;  ///< uncompressed records per chunk (rosbag2's default)
+  std::string profile = "ros2";       ///< the Header's profile
 };
 
 class McapWriter {
@@ -47,7 +47,7 @@ class McapWriter {
   std::string path_;
   McapWriterOptions options_;
   io::AtomicFile out_;
-  uint64_t offset_ = 0;  // bytes written so far
+  uint64_t offset_ = 0;         // bytes written so far
   std::vector<uint8_t> chunk_;  // records of the open chunk, uncompressed
   uint64_t chunk_start_ = 0, chunk_end_ = 0;
   std::map<uint16_t, std::vector<std::pair<uint64_t, uint64_t>>> chunk_index_;  // (time, offset)

@@ -42,9 +42,8 @@ void RequireTopic(const std::string& path, const TopicTypes& topics, const std::
   }
 }
 
-PointTimeConvention CheckFirstCloud(const PointCloud2Message& first,
-                                    PointTimeConvention convention, const std::string& path,
-                                    const std::string& topic) {
+PointTimeConvention CheckFirstCloud(const PointCloud2Message& first, PointTimeConvention convention,
+                                    const std::string& path, const std::string& topic) {
   if (convention == PointTimeConvention::kAuto) {
     convention = DetectPointTimeConvention(first.fields);
   }

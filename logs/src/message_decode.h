@@ -24,9 +24,8 @@ void RequireTopic(const std::string& path, const TopicTypes& topics, const std::
 
 /// The first scan, decoded once at open: resolves kAuto and reports a cloud without x/y/z (or
 /// without the configured time field) then, not somewhere into the run. Returns the convention.
-PointTimeConvention CheckFirstCloud(const PointCloud2Message& first,
-                                    PointTimeConvention convention, const std::string& path,
-                                    const std::string& topic);
+PointTimeConvention CheckFirstCloud(const PointCloud2Message& first, PointTimeConvention convention,
+                                    const std::string& path, const std::string& topic);
 
 /// A scan message (empty scans are delivered and counted).
 void DecodeScan(const PointCloud2Message& cloud, PointTimeConvention convention,

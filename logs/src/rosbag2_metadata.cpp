@@ -94,16 +94,16 @@ Rosbag2Metadata ParseRosbag2Metadata(const std::string& yaml_text, const std::st
   if (!info.IsMap()) k.Fail(top, "is not a map");
   Rosbag2Metadata m;
   m.version = k.As<int>(k.Required(info, "version", top + ".version"), top + ".version");
-  m.storage_identifier = k.As<std::string>(
-      k.Required(info, "storage_identifier", top + ".storage_identifier"),
-      top + ".storage_identifier");
+  m.storage_identifier =
+      k.As<std::string>(k.Required(info, "storage_identifier", top + ".storage_identifier"),
+                        top + ".storage_identifier");
   const YAML::Node paths = k.Sequence(info, "relative_file_paths", top + ".relative_file_paths");
   for (std::size_t i = 0; i < paths.size(); ++i) {
     m.relative_file_paths.push_back(
         k.As<std::string>(paths[i], top + ".relative_file_paths[" + std::to_string(i) + "]"));
   }
-  m.starting_time_ns = Nanoseconds(k, info, "starting_time", "nanoseconds_since_epoch",
-                                   top + ".starting_time");
+  m.starting_time_ns =
+      Nanoseconds(k, info, "starting_time", "nanoseconds_since_epoch", top + ".starting_time");
   m.duration_ns = Nanoseconds(k, info, "duration", "nanoseconds", top + ".duration");
   m.message_count = k.Optional<uint64_t>(info, "message_count", top + ".message_count", 0);
   const YAML::Node topics =
@@ -143,8 +143,8 @@ Rosbag2Metadata ReadRosbag2Metadata(const std::string& path) {
 std::string Rosbag2MetadataYaml(const Rosbag2Metadata& m) {
   YAML::Emitter out;
   const auto time = [&](const char* name, const char* field, int64_t ns) {
-    out << YAML::Key << name << YAML::Value << YAML::BeginMap << YAML::Key << field
-        << YAML::Value << ns << YAML::EndMap;
+    out << YAML::Key << name << YAML::Value << YAML::BeginMap << YAML::Key << field << YAML::Value
+        << ns << YAML::EndMap;
   };
   out << YAML::BeginMap << YAML::Key << "rosbag2_bagfile_information" << YAML::Value
       << YAML::BeginMap;
@@ -167,8 +167,7 @@ std::string Rosbag2MetadataYaml(const Rosbag2Metadata& m) {
   out << YAML::EndSeq;
   out << YAML::Key << "compression_format" << YAML::Value << YAML::DoubleQuoted
       << m.compression_format;
-  out << YAML::Key << "compression_mode" << YAML::Value << YAML::DoubleQuoted
-      << m.compression_mode;
+  out << YAML::Key << "compression_mode" << YAML::Value << YAML::DoubleQuoted << m.compression_mode;
   out << YAML::Key << "relative_file_paths" << YAML::Value << m.relative_file_paths;
   out << YAML::Key << "files" << YAML::Value << YAML::BeginSeq;
   for (const Rosbag2FileInfo& f : m.files) {

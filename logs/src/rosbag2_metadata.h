@@ -15,9 +15,9 @@ constexpr char kRosbag2MetadataFile[] = "metadata.yaml";
 
 struct Rosbag2TopicInfo {
   std::string name;
-  std::string type;                      ///< e.g. "sensor_msgs/msg/Imu"
-  std::string serialization_format;      ///< "cdr"
-  std::string offered_qos_profiles;      ///< YAML text, as recorded
+  std::string type;                  ///< e.g. "sensor_msgs/msg/Imu"
+  std::string serialization_format;  ///< "cdr"
+  std::string offered_qos_profiles;  ///< YAML text, as recorded
   uint64_t message_count = 0;
 };
 

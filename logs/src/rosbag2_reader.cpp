@@ -43,8 +43,8 @@ class Rosbag2Reader : public LogReader {
         const auto [data, size] = bytes_.Of(m);
         if (scan) {
           RequireType(*m.topic, kCloudTypes);
-          detail::DecodeScan(detail::DecodeCdrCloud(m.topic->type, data, size), convention_, message,
-                             &counters_);
+          detail::DecodeScan(detail::DecodeCdrCloud(m.topic->type, data, size), convention_,
+                             message, &counters_);
           return true;
         }
         RequireType(*m.topic, kImuTypes);
@@ -80,8 +80,7 @@ class Rosbag2Reader : public LogReader {
         if (!t.serialization_format.empty() && t.serialization_format != "cdr") {
           throw std::runtime_error("bag '" + layout_.path + "': topic '" + name +
                                    "' is serialized as '" +
-                                   detail::Printable(t.serialization_format) +
-                                   "', hylo reads cdr");
+                                   detail::Printable(t.serialization_format) + "', hylo reads cdr");
         }
       }
     }

@@ -72,8 +72,8 @@ void FromMetadata(Rosbag2Layout* layout) {
   const Rosbag2Metadata& m = *layout->metadata;
   layout->storage = m.storage_identifier;
   if (layout->storage != "sqlite3" && layout->storage != "mcap") {
-    Fail(layout->path, "storage '" + m.storage_identifier +
-                           "' is not supported (hylo reads sqlite3 and mcap)");
+    Fail(layout->path,
+         "storage '" + m.storage_identifier + "' is not supported (hylo reads sqlite3 and mcap)");
   }
   if (!m.compression_format.empty()) {
     if (m.compression_format != "zstd") {
@@ -101,14 +101,14 @@ void FromMetadata(Rosbag2Layout* layout) {
 std::string DecompressFile(const std::string& bag, const std::string& path) {
   static std::atomic<int> counter{0};
   const fs::path out_path =
-      fs::temp_directory_path() / ("hylo_rosbag2_" + std::to_string(::getpid()) + "_" +
-                                   std::to_string(counter++) + "_" +
-                                   fs::path(path).stem().filename().string());
+      fs::temp_directory_path() /
+      ("hylo_rosbag2_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + "_" +
+       fs::path(path).stem().filename().string());
   std::ifstream in(path, std::ios::binary);
   std::ofstream out(out_path, std::ios::binary);
   if (!in || !out) Fail(bag, "cannot decompress '" + path + "' to " + out_path.string());
   std::unique_ptr<ZSTD_DStream, decltype(&ZSTD_freeDStream)> stream(ZSTD_createDStream(),
-                                                                     &ZSTD_freeDStream);
+                                                                    &ZSTD_freeDStream);
   ZSTD_initDStream(stream.get());
   std::vector<char> input(ZSTD_DStreamInSize()), output(ZSTD_DStreamOutSize());
   std::size_t last = 1;

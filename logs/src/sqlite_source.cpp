@@ -149,8 +149,8 @@ class SqliteSource : public StorageSource {
 
   void ReadTopics() {
     sqlite3_stmt* s = nullptr;
-    if (sqlite3_prepare_v2(db_.get(), "SELECT id, name, type, serialization_format FROM topics", -1, &s,
-                           nullptr) != SQLITE_OK) {
+    if (sqlite3_prepare_v2(db_.get(), "SELECT id, name, type, serialization_format FROM topics", -1,
+                           &s, nullptr) != SQLITE_OK) {
       const std::string why = sqlite3_errmsg(db_.get());
       sqlite3_finalize(s);
       Fail("not a rosbag2 database (" + why + ")");
@@ -192,7 +192,8 @@ class SqliteSource : public StorageSource {
     const int rc = sqlite3_prepare_v2(db_.get(), sql, -1, &statement, nullptr);
     statement_.reset(statement);
     if (rc != SQLITE_OK) {
-      if (!recovery_) Fail(std::string("not a rosbag2 database (") + sqlite3_errmsg(db_.get()) + ")");
+      if (!recovery_)
+        Fail(std::string("not a rosbag2 database (") + sqlite3_errmsg(db_.get()) + ")");
       Damaged(sqlite3_errmsg(db_.get()));
     }
   }

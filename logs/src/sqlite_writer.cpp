@@ -13,8 +13,8 @@ SqliteWriter::SqliteWriter(const std::string& path)
   std::error_code ec;
   std::filesystem::remove(temporary_, ec);
   sqlite3* db = nullptr;
-  const int rc = sqlite3_open_v2(temporary_.c_str(), &db,
-                                 SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr);
+  const int rc =
+      sqlite3_open_v2(temporary_.c_str(), &db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr);
   db_.reset(db);
   if (rc != SQLITE_OK) Fail("cannot be created");
   // No journal: the database is a temporary until Close() renames it, so a crash mid-way leaves

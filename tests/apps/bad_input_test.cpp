@@ -349,7 +349,9 @@ std::vector<Case> Cases() {
        1,
        {"r2_missing", "storage file 'ros2_mcap_1.mcap' (listed in metadata.yaml) is missing"}},
       {"rosbag2 metadata.yaml malformed",
-       [=] { return MapArgs(Ros2Variant("r2_malformed", "version: 5", "version: [5"), sim, "o24"); },
+       [=] {
+         return MapArgs(Ros2Variant("r2_malformed", "version: 5", "version: [5"), sim, "o24");
+       },
        1,
        {"r2_malformed/metadata.yaml", "malformed YAML"}},
       {"rosbag2 with an unknown storage",
@@ -362,8 +364,9 @@ std::vector<Case> Cases() {
        {"r2_storage", "storage 'rosbag_v2' is not supported (hylo reads sqlite3 and mcap)"}},
       {"rosbag2 with an unsupported compression",
        [=] {
-         return MapArgs(Ros2Variant("r2_lz4", "compression_format: \"\"", "compression_format: lz4"),
-                        sim, "o26");
+         return MapArgs(
+             Ros2Variant("r2_lz4", "compression_format: \"\"", "compression_format: lz4"), sim,
+             "o26");
        },
        1,
        {"r2_lz4", "compression 'lz4' is not supported"}},

@@ -43,8 +43,9 @@ class Rosbag2Cli : public ::testing::Test {
   /// `hylo map` on `log`; returns trajectory.tum's bytes.
   static std::string Trajectory(const std::string& log, const std::string& tag) {
     const std::string out = Path("map_" + tag);
-    EXPECT_EQ(Run("map --log " + log + " --config " + kConfig + " --out " + out, "map_" + tag + ".log"),
-              0)
+    EXPECT_EQ(
+        Run("map --log " + log + " --config " + kConfig + " --out " + out, "map_" + tag + ".log"),
+        0)
         << ReadText(Path("map_" + tag + ".log"));
     return ReadText(out + "/trajectory.tum");
   }
@@ -59,7 +60,8 @@ TEST_F(Rosbag2Cli, TheSameSessionInEveryFormatGivesBitIdenticalTrajectories) {
   for (const std::string format : {"sqlite3", "mcap", "mcap-zstd"}) {
     const std::string log = Simulate(format);
     EXPECT_EQ(Trajectory(log, format), reference) << format;
-    ASSERT_EQ(Run("info " + log + " --json " + Path(format + ".json"), "info_" + format + ".log"), 0)
+    ASSERT_EQ(Run("info " + log + " --json " + Path(format + ".json"), "info_" + format + ".log"),
+              0)
         << ReadText(Path("info_" + format + ".log"));
     const io::Json info = io::ReadJsonFile(Path(format + ".json"));
     EXPECT_EQ(info["kind"], "rosbag2");

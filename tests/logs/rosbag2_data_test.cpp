@@ -161,8 +161,8 @@ TEST(Rosbag2Data, TestMessagesDecodeFieldByFieldToTheirLastByte) {
   HYLO_REQUIRE_DATA("rosbag2");
   for (const char* storage : {"mcap", "sqlite3"}) {
     SCOPED_TRACE(storage);
-    detail::Rosbag2Stream stream(detail::ResolveRosbag2(
-        testing::DataPath(std::string("rosbag2/") + storage + "/cdr_test")));
+    detail::Rosbag2Stream stream(
+        detail::ResolveRosbag2(testing::DataPath(std::string("rosbag2/") + storage + "/cdr_test")));
     detail::StorageMessage m;
     int basic = 0, arrays = 0;
     while (stream.Next(&m)) {
@@ -176,7 +176,8 @@ TEST(Rosbag2Data, TestMessagesDecodeFieldByFieldToTheirLastByte) {
         ASSERT_EQ(m.topic->type, "test_msgs/msg/Arrays");
         std::vector<std::string> strings;
         ReadBasicArrays(&in, &strings);
-        EXPECT_EQ(strings, (std::vector<std::string>{"Complex Hello1", "Complex Hello2", "Complex Hello3"}));
+        EXPECT_EQ(strings,
+                  (std::vector<std::string>{"Complex Hello1", "Complex Hello2", "Complex Hello3"}));
         int32_t value = 0;
         for (int i = 0; i < 3; ++i) ReadBasicTypes(&in, &value);
         for (int i = 0; i < 3; ++i) in.Read<uint8_t>();  // Constants[3]: one dummy byte each

@@ -205,8 +205,10 @@ std::string CompressedRecording(const std::string& dir, bool file_mode) {
   }
   WriteText(bag + "/metadata.yaml",
             "rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: sqlite3\n"
-            "  relative_file_paths: [" + storage + "]\n  topics_with_message_count: []\n"
-            "  compression_format: zstd\n  compression_mode: " +
+            "  relative_file_paths: [" +
+                storage +
+                "]\n  topics_with_message_count: []\n"
+                "  compression_format: zstd\n  compression_mode: " +
                 std::string(file_mode ? "file" : "message") + "\n");
   return bag;
 }
@@ -240,8 +242,9 @@ TEST(Rosbag2, ALivoxCustomMsgTopicGivesLivoxScans) {
   }
   for (int k = 0; k < 5; ++k) {
     const int64_t t = testing::kStartNs + k * 100000000LL;
-    writer.WriteCdr("/livox/lidar", detail::kLivoxCustomType, t + 99000,
-                    detail::EncodeCdrLivoxCustom(t, "livox_frame", static_cast<uint64_t>(t), points));
+    writer.WriteCdr(
+        "/livox/lidar", detail::kLivoxCustomType, t + 99000,
+        detail::EncodeCdrLivoxCustom(t, "livox_frame", static_cast<uint64_t>(t), points));
   }
   writer.Close();
   LogReadOptions options;

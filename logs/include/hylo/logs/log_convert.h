@@ -14,10 +14,10 @@
 namespace hylo::logs {
 
 struct ConvertSummary {
-  std::size_t imu_samples = 0;  ///< written
-  std::size_t scans = 0;        ///< written
+  std::size_t imu_samples = 0;                              ///< written
+  std::size_t scans = 0;                                    ///< written
   PointTimeConvention layout = PointTimeConvention::kNone;  ///< the scans' field layout
-  LogReadCounters counters;     ///< what the reader counted (drops included)
+  LogReadCounters counters;             ///< what the reader counted (drops included)
   std::optional<LogRecovery> recovery;  ///< set when the input was damaged
 };
 

@@ -38,8 +38,8 @@ class LogWriter {
   /// sensor_msgs Imu: header.stamp = t_ns, linear_acceleration = accel_imu (as given),
   /// angular_velocity = gyro_imu (rad/s), orientation unknown (orientation_covariance[0] = -1).
   /// Receive time = t_ns, or `receive_t_ns` when >= 0 (a late message, as tests need them).
-  virtual void WriteImu(const std::string& topic, const ImuSample& imu,
-                        const std::string& frame_id, int64_t receive_t_ns = -1) = 0;
+  virtual void WriteImu(const std::string& topic, const ImuSample& imu, const std::string& frame_id,
+                        int64_t receive_t_ns = -1) = 0;
   /// sensor_msgs PointCloud2 in the field layout of `layout`'s driver (EncodePointCloud2);
   /// `frame_id` replaces scan.frame_id. Receive time = scan.end_t_ns.
   virtual void WriteScan(const std::string& topic, const LidarScan& scan,

@@ -36,10 +36,10 @@ std::unique_ptr<LogReader> OpenRosbag2(const std::string& path, const LogReadOpt
 /// What a recording holds.
 struct Rosbag2Description {
   std::string path;
-  std::string storage;      ///< "sqlite3" or "mcap"
-  std::string compression;  ///< "none"; MCAP chunk codecs ("zstd", "lz4", "zstd, none");
-                            ///< rosbag2's own: "zstd (per message)", "zstd (per file)"
-  int metadata_version = 0;  ///< of metadata.yaml; 0 when there is none (a single file)
+  std::string storage;             ///< "sqlite3" or "mcap"
+  std::string compression;         ///< "none"; MCAP chunk codecs ("zstd", "lz4", "zstd, none");
+                                   ///< rosbag2's own: "zstd (per message)", "zstd (per file)"
+  int metadata_version = 0;        ///< of metadata.yaml; 0 when there is none (a single file)
   std::vector<std::string> files;  ///< storage files, in reading order
   uint64_t size_bytes = 0;         ///< of the storage files
   int64_t start_ns = 0;            ///< earliest log (receive) time

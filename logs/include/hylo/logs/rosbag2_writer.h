@@ -17,8 +17,8 @@ enum class Rosbag2Storage { kSqlite3, kMcap };
 
 struct Rosbag2WriterOptions {
   Rosbag2Storage storage = Rosbag2Storage::kMcap;  ///< sqlite3 (.db3) or MCAP (.mcap) storage
-  std::string mcap_compression;         ///< MCAP chunks: "" (stored), "zstd" or "lz4"
-  uint64_t mcap_chunk_bytes = 786432;   ///< uncompressed bytes per MCAP chunk (768 KiB, rosbag2's)
+  std::string mcap_compression;                    ///< MCAP chunks: "" (stored), "zstd" or "lz4"
+  uint64_t mcap_chunk_bytes = 786432;  ///< uncompressed bytes per MCAP chunk (768 KiB, rosbag2's)
 
   /// Names the field and the constraint when false.
   bool IsValid(std::string* why) const;
