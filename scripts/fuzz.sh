@@ -17,8 +17,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
 shift || true
-all_targets=(bag_pointcloud2 bag_imu bag_records pcd ply kitti_bin las trajectory scan_folder
-  pose_guess run_config json)
+all_targets=(bag_pointcloud2 bag_imu bag_records mcap_records cdr_messages rosbag2_metadata pcd ply
+  kitti_bin las trajectory scan_folder pose_guess run_config json)
 targets=("$@")
 [ "${#targets[@]}" -eq 0 ] && targets=("${all_targets[@]}")
 build_dir="${HYLO_FUZZ_BUILD_DIR:-build-fuzz}"

@@ -10,6 +10,9 @@ packages=(
   nlohmann-json3-dev libpng-dev liblzf-dev
   librosbag-storage-dev libroscpp-dev libroscpp-core-dev
   libbz2-dev libroslz4-dev  # chunks of bags read without their index (both come with rosbag)
+  # ROS 2 recordings (hylo::logs): rosbag2 sqlite3 storage, MCAP chunks and rosbag2's own
+  # compression (zstd; lz4 frames)
+  libsqlite3-dev libzstd-dev liblz4-dev
   libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libstd-msgs-dev
   # ROS1 node (apps/ros) and its integration test: tf2_ros, std_srvs; roscore + rosbag play
   libtf2-ros-dev libstd-srvs-dev ros-core

@@ -1,8 +1,10 @@
-// `hylo info LOG`: what a log holds, before anyone runs an estimator on it. A ROS1 bag shows
-// its topics, counts, rates, time span, point fields and the per-point time convention it
-// announces; a scan folder shows its scan count, format, fields and time span.
+// `hylo info LOG`: what a log holds, before anyone runs an estimator on it. A ROS1 bag or a
+// ROS 2 recording shows its topics, counts, rates, time span, point fields and the per-point
+// time convention it announces (a ROS 2 recording also its storage and compression); a scan
+// folder shows its scan count, format, fields and time span.
 
 #include <cstdio>
+#include <optional>
 #include <filesystem>
 #include <sstream>
 
@@ -10,6 +12,7 @@
 #include "hylo/common/time.h"
 #include "hylo/logs/bag_reader.h"
 #include "hylo/logs/log_reader.h"
+#include "hylo/logs/rosbag2_reader.h"
 #include "hylo/logs/scan_folder.h"
 #include "hylo/run/run_log.h"
 
@@ -25,23 +28,10 @@ std::string FieldList(const std::vector<logs::PointFieldInfo>& fields) {
   return os.str();
 }
 
-io::Json DescribeBagToTerminal(const std::string& path) {
-  const logs::BagDescription bag = logs::DescribeBag(path);
-  std::printf("ROS1 bag %s\n  size %.1f MB, %zu messages, %.3f s (receive time %.3f .. %.3f)\n",
-              path.c_str(), bag.file_size_bytes / 1e6, bag.message_count, bag.duration_s,
-              NanosToSeconds(bag.start_ns), NanosToSeconds(bag.end_ns));
-  io::Json json;
-  json["kind"] = "bag";
-  json["path"] = path;
-  json["message_count"] = bag.message_count;
-  json["duration_s"] = bag.duration_s;
-  if (bag.recovery) {
-    // A recording that was killed: what a run would use of it.
-    std::printf("  damaged: %s\n", bag.recovery->Summary().c_str());
-    json["recovery"] = run::LogRecoveryJson(*bag.recovery);
-  }
-  io::Json topics = io::Json::array();
-  for (const auto& t : bag.topics) {
+/// The topic lines of a bag or a ROS 2 recording, and their JSON.
+io::Json TopicsToTerminal(const std::vector<logs::BagTopicDescription>& topics) {
+  io::Json list = io::Json::array();
+  for (const auto& t : topics) {
     std::printf("  %-28s %-26s %7zu msgs  %8.2f Hz  %.3f .. %.3f s\n", t.name.c_str(),
                 t.type.c_str(), t.message_count, t.mean_rate_hz, NanosToSeconds(t.first_stamp_ns),
                 NanosToSeconds(t.last_stamp_ns));
@@ -59,9 +49,55 @@ io::Json DescribeBagToTerminal(const std::string& path) {
       topic["point_fields"] = fields;
       topic["time_convention"] = logs::ToString(t.detected_convention);
     }
-    topics.push_back(std::move(topic));
+    list.push_back(std::move(topic));
   }
-  json["topics"] = std::move(topics);
+  return list;
+}
+
+/// A damaged log: what a run would use of it.
+void RecoveryToTerminal(const std::optional<logs::LogRecovery>& recovery, io::Json* json) {
+  if (!recovery) return;
+  std::printf("  damaged: %s\n", recovery->Summary().c_str());
+  (*json)["recovery"] = run::LogRecoveryJson(*recovery);
+}
+
+io::Json DescribeBagToTerminal(const std::string& path) {
+  const logs::BagDescription bag = logs::DescribeBag(path);
+  std::printf("ROS1 bag %s\n  size %.1f MB, %zu messages, %.3f s (receive time %.3f .. %.3f)\n",
+              path.c_str(), bag.file_size_bytes / 1e6, bag.message_count, bag.duration_s,
+              NanosToSeconds(bag.start_ns), NanosToSeconds(bag.end_ns));
+  io::Json json;
+  json["kind"] = "bag";
+  json["path"] = path;
+  json["message_count"] = bag.message_count;
+  json["duration_s"] = bag.duration_s;
+  RecoveryToTerminal(bag.recovery, &json);
+  json["topics"] = TopicsToTerminal(bag.topics);
+  return json;
+}
+
+io::Json DescribeRosbag2ToTerminal(const std::string& path) {
+  const logs::Rosbag2Description bag = logs::DescribeRosbag2(path);
+  const std::string metadata = bag.metadata_version > 0
+                                   ? "metadata.yaml version " + std::to_string(bag.metadata_version)
+                                   : "no metadata.yaml";
+  std::printf("ROS 2 recording %s\n  storage %s, compression %s, %zu file(s), %s\n",
+              path.c_str(), bag.storage.c_str(), bag.compression.c_str(), bag.files.size(),
+              metadata.c_str());
+  std::printf("  size %.1f MB, %zu messages, %.3f s (receive time %.3f .. %.3f)\n",
+              bag.size_bytes / 1e6, bag.message_count, bag.duration_s,
+              NanosToSeconds(bag.start_ns), NanosToSeconds(bag.end_ns));
+  io::Json json;
+  json["kind"] = "rosbag2";
+  json["path"] = path;
+  json["storage"] = bag.storage;
+  json["compression"] = bag.compression;
+  json["files"] = bag.files;
+  json["metadata_version"] = bag.metadata_version;
+  json["message_count"] = bag.message_count;
+  json["duration_s"] = bag.duration_s;
+  RecoveryToTerminal(bag.recovery, &json);
+  json["topics"] = TopicsToTerminal(bag.topics);
   return json;
 }
 
@@ -96,17 +132,21 @@ io::Json DescribeFolderToTerminal(const std::string& path) {
 }  // namespace
 
 void AddInfoCommand(CLI::App& root) {
-  auto* cmd = root.add_subcommand("info", "Describe a log: a ROS1 bag or a folder of scans");
+  auto* cmd = root.add_subcommand(
+      "info", "Describe a log: a ROS1 bag, a ROS 2 recording (rosbag2, .mcap) or a scan folder");
   static std::string log_path;
   static std::string json_path;
-  cmd->add_option("LOG", log_path, "ROS1 bag file or scan folder (PCD/PLY/KITTI .bin + poses)")
+  cmd->add_option("LOG", log_path,
+                  "ROS1 bag, rosbag2 directory (sqlite3 or MCAP), .mcap file, or scan folder "
+                  "(PCD/PLY/KITTI .bin + poses)")
       ->required();
   cmd->add_option("--json", json_path, "write the description as JSON to this file");
   cmd->callback([] {
     if (!std::filesystem::exists(log_path)) {
       throw std::runtime_error("'" + log_path + "' does not exist");
     }
-    const io::Json summary = std::filesystem::is_directory(log_path)
+    const io::Json summary = logs::IsRosbag2(log_path) ? DescribeRosbag2ToTerminal(log_path)
+                             : std::filesystem::is_directory(log_path)
                                  ? DescribeFolderToTerminal(log_path)
                                  : DescribeBagToTerminal(log_path);
     MaybeWriteJson(json_path, summary);

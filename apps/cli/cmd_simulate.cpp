@@ -1,7 +1,7 @@
 // `hylo simulate --out DIR [--seed N] [--session a|b|both] [--duration S] [--lidar M]
-// [--lidar-time-offset S]`:
-// the substation simulator with ground truth (ROS1 bags, TUM truth, manifests, reference
-// cloud, slope grid). Prints the simulation speed of each session.
+// [--lidar-time-offset S] [--format ros1|sqlite3|mcap|mcap-zstd|mcap-lz4]`:
+// the substation simulator with ground truth (ROS1 bags or ROS 2 recordings, TUM truth,
+// manifests, reference cloud, slope grid). Prints the simulation speed of each session.
 // `hylo simulate --scenario N --out DIR`: randomized scenario N instead (scenario.h), with
 // its sensor sheet and the configuration the sheet gives.
 #include <algorithm>
@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "hylo/common/time.h"
 #include "hylo/io/progress.h"
+#include "hylo/logs/log_writer.h"
 #include "hylo/sim_io/scenario_writer.h"
 #include "hylo/sim_io/session_writer.h"
 
@@ -31,7 +32,14 @@ struct SimulateArgs {
   sim::SiteOutputOptions site_output;
   std::optional<uint64_t> scenario;  // randomized scenario number
   std::string config_dir;            // presets for the scenario's configuration
+  std::string format = "ros1";       // the sessions' log format (logs::LogFormat)
 };
+
+logs::LogFormat FormatOf(const SimulateArgs& args) {
+  logs::LogFormat format = logs::LogFormat::kRos1;
+  logs::ParseLogFormat(args.format, &format);  // checked by the option
+  return format;
+}
 
 io::Json SessionJson(const sim::SessionSummary& s) {
   io::Json j = io::Json::object();
@@ -91,7 +99,8 @@ void RunScenario(const SimulateArgs& args) {
   for (const sim::SessionId id : {sim::SessionId::kA, sim::SessionId::kB}) {
     if (args.session != "both" && args.session != sim::ToString(id)) continue;
     sessions.push_back(WriteWithProgress(id, [&](const auto& progress) {
-      return sim::WriteScenarioSession(scenario, site, id, config, args.out_dir, progress);
+      return sim::WriteScenarioSession(scenario, site, id, config, args.out_dir, progress,
+                                       FormatOf(args));
     }));
   }
   summary["sessions"] = sessions;
@@ -131,7 +140,7 @@ void Run(const SimulateArgs& args) {
   for (const sim::SessionId id : {sim::SessionId::kA, sim::SessionId::kB}) {
     if (args.session != "both" && args.session != sim::ToString(id)) continue;
     sessions.push_back(WriteWithProgress(id, [&](const auto& progress) {
-      return sim::WriteSession(options, site, id, args.out_dir, progress);
+      return sim::WriteSession(options, site, id, args.out_dir, progress, FormatOf(args));
     }));
   }
   summary["sessions"] = sessions;
@@ -147,7 +156,7 @@ void Run(const SimulateArgs& args) {
 
 void AddSimulateCommand(CLI::App& root) {
   auto* cmd = root.add_subcommand(
-      "simulate", "Simulate a rough-terrain substation: lidar+IMU bags with ground truth");
+      "simulate", "Simulate a rough-terrain substation: lidar+IMU logs with ground truth");
   static SimulateArgs args;
   cmd->add_option("--out", args.out_dir, "output directory")->required();
   auto* seed = cmd->add_option("--seed", args.seed, "random seed (same seed, same bytes)");
@@ -175,6 +184,10 @@ void AddSimulateCommand(CLI::App& root) {
       ->excludes(offset);  // a scenario draws its own clock offset
   cmd->add_option("--config-dir", args.config_dir,
                   "where the scenario's preset config/<preset>.yaml is (default ./config)");
+  cmd->add_option("--format", args.format,
+                  "session logs: ros1 (.bag), or a ROS 2 recording (rosbag2 directory): sqlite3, "
+                  "mcap, mcap-zstd, mcap-lz4")
+      ->check(CLI::IsMember({"ros1", "sqlite3", "mcap", "mcap-zstd", "mcap-lz4"}));
   cmd->add_option("--json", args.json_path, "write a JSON summary (with timings) here");
   cmd->callback([] { Run(args); });
 }

@@ -22,6 +22,7 @@ void AddEvalCommand(CLI::App& root);
 void AddCompareCommand(CLI::App& root);
 void AddDemoCommand(CLI::App& root);
 void AddConfigCommand(CLI::App& root);
+void AddConvertCommand(CLI::App& root);
 
 /// Writes `summary` to `path` when the user passed --json (path non-empty).
 void MaybeWriteJson(const std::string& path, const io::Json& summary);

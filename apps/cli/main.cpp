@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   hylo::cli::AddCompareCommand(app);
   hylo::cli::AddDemoCommand(app);
   hylo::cli::AddConfigCommand(app);
+  hylo::cli::AddConvertCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

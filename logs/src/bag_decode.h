@@ -1,7 +1,7 @@
 #pragma once
-// Private to hylo_io: what both bag readers (through the index, or record by record for a
-// damaged bag) do with the messages: topic checks with errors that list what the bag holds,
-// and sensor_msgs → LogMessage with counted drops.
+// Private to hylo_logs: what both ROS1 bag readers (through the index, or record by record for
+// a damaged bag) do with the messages: sensor_msgs types into the format-free decoding of
+// message_decode.h, and ROS1 message definitions checked.
 
 #include <ros/message_traits.h>
 #include <ros/serialization.h>
@@ -15,6 +15,7 @@
 
 #include "bag_records.h"
 #include "hylo/logs/log_reader.h"
+#include "message_decode.h"
 #include "hylo/logs/ros_bridge.h"
 #include "printable.h"
 
@@ -23,16 +24,13 @@ namespace hylo::logs::detail {
 constexpr char kImuType[] = "sensor_msgs/Imu";
 constexpr char kCloudType[] = "sensor_msgs/PointCloud2";
 
-/// topic -> types of its connections (normally exactly one).
-using TopicTypes = std::map<std::string, std::vector<std::string>>;
+/// RequireTopic with one type.
+inline void RequireTopic(const std::string& path, const TopicTypes& topics,
+                         const std::string& topic, const std::string& type) {
+  RequireTopic(path, topics, topic, std::vector<std::string>{type});
+}
 
-/// Throws naming the file when `topic` is missing (listing the topics there are) or of
-/// another type than `type`.
-void RequireTopic(const std::string& path, const TopicTypes& topics, const std::string& topic,
-                  const std::string& type);
-
-/// The first scan, decoded once at open: resolves kAuto and reports a cloud without x/y/z (or
-/// without the configured time field) then, not somewhere into the run. Returns the convention.
+/// CheckFirstCloud on a ROS message.
 PointTimeConvention CheckFirstScan(sensor_msgs::PointCloud2 first, PointTimeConvention convention,
                                    const std::string& path, const std::string& topic);
 

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "hylo/logs/bag_reader.h"
+#include "hylo/logs/rosbag2_reader.h"
 #include "hylo/logs/scan_folder.h"
 
 namespace hylo::logs {
@@ -21,6 +22,8 @@ std::unique_ptr<LogReader> OpenLog(const std::string& path, const LogReadOptions
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(path, ec)) throw std::runtime_error("log '" + path + "' does not exist");
+  // A rosbag2 directory or storage file is told by its content, not its name.
+  if (IsRosbag2(path)) return OpenRosbag2(path, options);
   if (fs::is_directory(path, ec)) return OpenScanFolder(path, options);
   return OpenBag(path, options);
 }

@@ -1,11 +1,13 @@
 #pragma once
-// A simulated session streamed into a ROS1 bag as a driver would have recorded it (its
-// topics, its per-point time layout, its acceleration units), the truth kept for a TUM file.
+// A simulated session streamed into a log (a ROS1 bag or a ROS 2 recording) as a driver would
+// have recorded it (its topics, its per-point time layout, its acceleration units), the truth
+// kept for a TUM file.
 
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "hylo/logs/bag_writer.h"
+#include "hylo/logs/log_writer.h"
 #include "hylo/io/trajectory_io.h"
 #include "hylo/sim/simulator.h"
 
@@ -22,15 +24,15 @@ struct BagLayout {
 
 class FileSink : public SessionSink {
  public:
-  FileSink(const std::string& bag_path, const BagLayout& layout)
-      : bag_(bag_path), layout_(layout) {}
+  FileSink(const std::string& log_path, const BagLayout& layout, logs::LogFormat format)
+      : log_(logs::CreateLogWriter(log_path, format)), layout_(layout) {}
   void OnImu(const ImuSample& s) override {
     ImuSample published = s;
     published.accel_imu /= layout_.accel_units_mps2;
-    bag_.WriteImu(layout_.imu_topic, published, "imu");
+    log_->WriteImu(layout_.imu_topic, published, "imu");
   }
   void OnScan(const LidarScan& s) override {
-    bag_.WriteScan(layout_.points_topic, s, layout_.point_layout, "lidar");
+    log_->WriteScan(layout_.points_topic, s, layout_.point_layout, "lidar");
   }
   void OnTruth(const TruthSample& t) override {
     io::StampedPose pose;
@@ -39,11 +41,11 @@ class FileSink : public SessionSink {
     pose.orientation = Eigen::Quaterniond(t.T_map_imu.linear()).normalized();
     truth_.push_back(pose);
   }
-  void Close() { bag_.Close(); }
+  void Close() { log_->Close(); }
   const std::vector<io::StampedPose>& truth() const { return truth_; }
 
  private:
-  logs::BagWriter bag_;
+  std::unique_ptr<logs::LogWriter> log_;
   BagLayout layout_;
   std::vector<io::StampedPose> truth_;
 };

@@ -124,7 +124,8 @@ io::Json ScenarioToJson(const Scenario& s) {
 
 SessionSummary WriteScenarioSession(const Scenario& scenario, const Site& site, SessionId session,
                                     const config::RunConfig& config, const std::string& dir,
-                                    const std::function<void(std::size_t, std::size_t)>& progress) {
+                                    const std::function<void(std::size_t, std::size_t)>& progress,
+                                    logs::LogFormat format) {
   std::filesystem::create_directories(dir);
   const ScenarioSimulator simulator(scenario, site, session);
   BagLayout layout;
@@ -132,7 +133,7 @@ SessionSummary WriteScenarioSession(const Scenario& scenario, const Site& site, 
   layout.points_topic = config.lidar.topic;
   layout.point_layout = config.lidar.time_convention;
   layout.accel_units_mps2 = config.imu.accel_scale;
-  FileSink sink(SessionBagPath(dir, session), layout);
+  FileSink sink(SessionLogPath(dir, session, format), layout, format);
   const SessionSummary summary = simulator.Run(&sink, progress);
   sink.Close();
   io::WriteTum(SessionTruthPath(dir, session), sink.truth());

@@ -8,7 +8,6 @@
 
 #include "file_sink.h"
 #include "hylo/common/time.h"
-#include "hylo/logs/bag_writer.h"
 #include "hylo/io/trajectory_io.h"
 #include "hylo/sim_io/reference_outputs.h"
 #include "json_parts.h"
@@ -21,14 +20,16 @@ std::string Join(const std::string& dir, const std::string& name) {
 }
 
 io::Json ManifestJson(const SimulationOptions& options, const SessionSummary& s,
-                      const std::string& dir) {
+                      const std::string& dir, logs::LogFormat format) {
   io::Json j = io::Json::object();
   j["generator"] = "hylo simulate";
   j["seed"] = static_cast<unsigned long long>(options.seed);
   j["session"] = ToString(s.session);
   j["role"] = s.session == SessionId::kA ? "mapping" : "localization (changed site, annex)";
   j["frames"] = "map (site), imu (body), lidar; T_a_b maps points from b to a";
-  j["files"]["bag"] = std::filesystem::path(SessionBagPath(dir, s.session)).filename().string();
+  j["files"]["bag"] =
+      std::filesystem::path(SessionLogPath(dir, s.session, format)).filename().string();
+  j["files"]["log_format"] = logs::ToString(format);
   j["files"]["truth_tum"] =
       std::filesystem::path(SessionTruthPath(dir, s.session)).filename().string();
   j["topics"]["imu"] = "/imu";
@@ -66,6 +67,9 @@ bool SiteOutputOptions::IsValid(std::string* why) const {
 std::string SessionBagPath(const std::string& dir, SessionId s) {
   return Join(dir, "session_" + ToString(s) + ".bag");
 }
+std::string SessionLogPath(const std::string& dir, SessionId s, logs::LogFormat format) {
+  return logs::LogPathFor(Join(dir, "session_" + ToString(s)), format);
+}
 std::string SessionTruthPath(const std::string& dir, SessionId s) {
   return Join(dir, "session_" + ToString(s) + "_truth.tum");
 }
@@ -75,14 +79,15 @@ std::string SessionManifestPath(const std::string& dir, SessionId s) {
 
 SessionSummary WriteSession(const SimulationOptions& options, const Site& site, SessionId session,
                             const std::string& dir,
-                            const std::function<void(std::size_t, std::size_t)>& progress) {
+                            const std::function<void(std::size_t, std::size_t)>& progress,
+                            logs::LogFormat format) {
   std::filesystem::create_directories(dir);
   const SessionSimulator simulator(options, site, session);
-  FileSink sink(SessionBagPath(dir, session), BagLayout());
+  FileSink sink(SessionLogPath(dir, session, format), BagLayout(), format);
   const SessionSummary summary = simulator.Run(&sink, progress);
   sink.Close();
   io::WriteTum(SessionTruthPath(dir, session), sink.truth());
-  io::WriteJsonFile(SessionManifestPath(dir, session), ManifestJson(options, summary, dir));
+  io::WriteJsonFile(SessionManifestPath(dir, session), ManifestJson(options, summary, dir, format));
   return summary;
 }
 

@@ -15,12 +15,14 @@
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "apps/cli_test_util.h"
 #include "hylo/logs/bag_reader.h"
 #include "hylo/logs/bag_writer.h"
+#include "hylo/logs/log_convert.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/json.h"
 #include "hylo/logs/log_reader.h"
@@ -196,6 +198,44 @@ std::string FaultyBag(Faults* faults) {
   return path;
 }
 
+/// The session as a ROS 2 recording (a rosbag2 directory) in `format`.
+const std::string& Ros2Bag(logs::LogFormat format) {
+  static std::map<logs::LogFormat, std::string> made;
+  std::string& path = made[format];
+  if (path.empty()) {
+    path = Path("ros2_" + logs::ToString(format));
+    logs::ConvertLog(GoodBag(), path, format, logs::LogReadOptions());
+  }
+  return path;
+}
+
+/// A copy of the MCAP recording with `from` replaced by `to` in its metadata.yaml (nothing
+/// replaced when `from` is empty), or without metadata.yaml when `to` is "<none>".
+std::string Ros2Variant(const std::string& name, const std::string& from, const std::string& to) {
+  const std::string bag = Path(name);
+  fs::create_directories(bag);
+  const std::string source = Ros2Bag(logs::LogFormat::kMcap);
+  const std::string storage = fs::path(source).filename().string() + "_0.mcap";
+  fs::copy_file(source + "/" + storage, bag + "/" + storage, fs::copy_options::overwrite_existing);
+  if (to == "<none>") return bag;
+  std::string yaml = ReadText(source + "/metadata.yaml");
+  if (!from.empty()) yaml.replace(yaml.find(from), from.size(), to);
+  WriteText(bag + "/metadata.yaml", yaml);
+  return bag;
+}
+
+/// A storage file of `format` cut after `fraction` of its bytes, given directly.
+std::string CutRos2(logs::LogFormat format, double fraction) {
+  const std::string source = Ros2Bag(format);
+  const std::string ext = format == logs::LogFormat::kSqlite3 ? ".db3" : ".mcap";
+  const std::string path = Path("cut_" + logs::ToString(format) + ext);
+  std::vector<char> bytes =
+      ReadBytes(source + "/" + fs::path(source).filename().string() + "_0" + ext);
+  bytes.resize(static_cast<std::size_t>(bytes.size() * fraction));
+  WriteBytes(path, bytes);
+  return path;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Checks.
 
@@ -299,6 +339,56 @@ std::vector<Case> Cases() {
        },
        1,
        {"'/points' has type sensor_msgs/PointCloud2, expected sensor_msgs/Imu"}},
+      // ROS 2 recordings.
+      {"rosbag2 without metadata.yaml (recorder killed): map",
+       [=] { return MapArgs(Ros2Variant("r2_no_metadata", "", "<none>"), sim, "o22"); },
+       0,
+       {"warning:", "no metadata.yaml (recording interrupted?)"}},
+      {"rosbag2 metadata.yaml naming a missing storage file",
+       [=] { return MapArgs(Ros2Variant("r2_missing", "_0.mcap", "_1.mcap"), sim, "o23"); },
+       1,
+       {"r2_missing", "storage file 'ros2_mcap_1.mcap' (listed in metadata.yaml) is missing"}},
+      {"rosbag2 metadata.yaml malformed",
+       [=] {
+         return MapArgs(Ros2Variant("r2_malformed", "version: 5", "version: [5"), sim, "o24");
+       },
+       1,
+       {"r2_malformed/metadata.yaml", "malformed YAML"}},
+      {"rosbag2 with an unknown storage",
+       [=] {
+         return MapArgs(Ros2Variant("r2_storage", "storage_identifier: mcap",
+                                    "storage_identifier: rosbag_v2"),
+                        sim, "o25");
+       },
+       1,
+       {"r2_storage", "storage 'rosbag_v2' is not supported (hylo reads sqlite3 and mcap)"}},
+      {"rosbag2 with an unsupported compression",
+       [=] {
+         return MapArgs(
+             Ros2Variant("r2_lz4", "compression_format: \"\"", "compression_format: lz4"), sim,
+             "o26");
+       },
+       1,
+       {"r2_lz4", "compression 'lz4' is not supported"}},
+      {"rosbag2 imu topic of the wrong type",
+       [=] {
+         return MapArgs(Ros2Bag(logs::LogFormat::kMcapZstd),
+                        Config("c_imu_type2.yaml", "imu: {topic: /points}\n"), "o27");
+       },
+       1,
+       {"'/points' has type sensor_msgs/msg/PointCloud2, expected sensor_msgs/msg/Imu"}},
+      {"MCAP cut at 60 % (no footer, last chunk cut): info",
+       [=] { return "info " + CutRos2(logs::LogFormat::kMcapZstd, 0.6); },
+       0,
+       {"damaged:", "no footer (recording interrupted?)", "recovered"}},
+      {"MCAP cut at 60 % (no footer, last chunk cut): map",
+       [=] { return MapArgs(CutRos2(logs::LogFormat::kMcap, 0.6), sim, "o28"); },
+       0,
+       {"warning:", "no footer", "recovered", "the last chunk is cut"}},
+      {"sqlite3 database cut at 60 %: map",
+       [=] { return MapArgs(CutRos2(logs::LogFormat::kSqlite3, 0.6), sim, "o29"); },
+       0,
+       {"warning:", "database cut short", "recovered"}},
       // Configuration files.
       {"config missing",
        [=] { return MapArgs(GoodBag(), Path("absent.yaml"), "o9"); },
@@ -512,7 +602,7 @@ TEST(BadInput, EveryCaseGivesItsClearErrorAndWritesNothingHalf) {
       EXPECT_NE(output.find("error:"), std::string::npos) << output;
     }
   }
-  EXPECT_GE(cases.size(), 30u);
+  EXPECT_GE(cases.size(), 39u);
   for (const auto& entry : fs::directory_iterator(Dir())) {
     if (entry.is_directory() && entry.path().filename().string()[0] == 'o') {
       ExpectOnlyCompleteFiles(entry.path().string());

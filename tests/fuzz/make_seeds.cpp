@@ -16,8 +16,10 @@
 #include <string>
 #include <vector>
 
+#include "cdr_messages.h"
 #include "hylo/config/run_config.h"
 #include "hylo/logs/bag_writer.h"
+#include "hylo/logs/rosbag2_writer.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/json.h"
 #include "hylo/logs/pointcloud2.h"
@@ -191,6 +193,91 @@ void BagRecordSeeds() {
     const std::size_t index_at = U32At(none, index_pos + 10);  // u64; small bags fit in u32
     Emit("bag_records", "no_index", none.substr(0, index_at));
   }
+}
+
+// --- ROS 2 recordings -----------------------------------------------------------------------
+
+// The small recording of SmallBag as a single MCAP file (chunks of 1 KiB: several).
+std::string SmallMcap(const std::string& compression) {
+  const std::string path = Scratch("r.mcap");
+  {
+    hylo::logs::Rosbag2WriterOptions options;
+    options.mcap_compression = compression;
+    options.mcap_chunk_bytes = 1024;
+    hylo::logs::Rosbag2Writer writer(path, options);
+    const hylo::LidarScan scan = SmallScan();
+    for (int i = 0; i < 4; ++i) {
+      hylo::ImuSample imu;
+      imu.t_ns = scan.t_ns + i * 40'000'000LL;
+      imu.accel_imu = Eigen::Vector3d(0.01 * i, -0.02, 9.81);
+      imu.gyro_imu = Eigen::Vector3d(0.001, 0.002 * i, -0.003);
+      writer.WriteImu("/imu", imu, "imu");
+      if (i == 2) writer.WriteScan("/points", scan, PointTimeConvention::kVelodyne, "lidar");
+    }
+    writer.Close();
+  }
+  return Take(path);
+}
+
+void McapSeeds() {
+  const std::string stored = SmallMcap("");
+  Emit("mcap_records", "stored", stored);
+  Emit("mcap_records", "zstd", SmallMcap("zstd"));
+  const std::string lz4 = SmallMcap("lz4");
+  Emit("mcap_records", "lz4", lz4);
+  // Cut short, as a killed recorder leaves it: inside a chunk, and before the summary.
+  Emit("mcap_records", "stored_cut", stored.substr(0, stored.size() * 6 / 10));
+  Emit("mcap_records", "lz4_cut", lz4.substr(0, lz4.size() * 6 / 10));
+  const std::size_t data_end = stored.rfind(std::string("\x0f\x04\0\0\0\0\0\0\0", 9));
+  if (data_end != std::string::npos) {
+    Emit("mcap_records", "no_summary", stored.substr(0, data_end));
+  }
+}
+
+void CdrSeeds() {
+  namespace detail = hylo::logs::detail;
+  const auto bytes = [](const std::vector<uint8_t>& v) { return std::string(v.begin(), v.end()); };
+  const PointTimeConvention layouts[] = {PointTimeConvention::kVelodyne,
+                                         PointTimeConvention::kOuster, PointTimeConvention::kLivox,
+                                         PointTimeConvention::kNone};
+  // The target's first byte: 0 PointCloud2, 1 Imu, 2 Livox CustomMsg.
+  for (const PointTimeConvention layout : layouts) {
+    Emit("cdr_messages", "cloud_" + logs::ToString(layout),
+         std::string(1, '\0') +
+             bytes(detail::EncodeCdrPointCloud2(logs::EncodePointCloud2(SmallScan(), layout))));
+  }
+  hylo::ImuSample imu;
+  imu.t_ns = 1'700'000'000'000'000'000;
+  imu.accel_imu = Eigen::Vector3d(0.1, 0.2, 9.81);
+  Emit("cdr_messages", "imu", std::string(1, '\1') + bytes(detail::EncodeCdrImu(imu, "imu")));
+  std::vector<detail::LivoxCustomPoint> points(4);
+  for (int i = 0; i < 4; ++i) {
+    points[i].offset_time_ns = 1000 * i;
+    points[i].x = 1.0f + i;
+    points[i].line = static_cast<uint8_t>(i);
+  }
+  Emit("cdr_messages", "livox",
+       std::string(1, '\2') +
+           bytes(detail::EncodeCdrLivoxCustom(imu.t_ns, "livox", 1700000000000000000ull, points)));
+}
+
+void MetadataSeeds() {
+  const std::string dir = Scratch("bag");
+  {
+    hylo::logs::Rosbag2Writer writer(dir, hylo::logs::Rosbag2WriterOptions());
+    writer.WriteImu("/imu", hylo::ImuSample(), "imu");
+    writer.Close();
+  }
+  Emit("rosbag2_metadata", "version_5", FileBytes(fs::path(dir) / "metadata.yaml"));
+  fs::remove_all(dir);
+  // What older recorders wrote: version 4 without the per-file list, flow style.
+  Emit("rosbag2_metadata", "version_4",
+       "rosbag2_bagfile_information:\n  version: 4\n  storage_identifier: sqlite3\n"
+       "  relative_file_paths: [a_0.db3, a_1.db3]\n  duration: {nanoseconds: 411}\n"
+       "  starting_time: {nanoseconds_since_epoch: 2623}\n  message_count: 2\n"
+       "  topics_with_message_count:\n    - topic_metadata: {name: /a, type: std_msgs/msg/String,"
+       " serialization_format: cdr, offered_qos_profiles: ''}\n      message_count: 2\n"
+       "  compression_format: zstd\n  compression_mode: message\n");
 }
 
 // --- point cloud files ----------------------------------------------------------------------
@@ -380,15 +467,19 @@ int main(int argc, char** argv) {
     return 2;
   }
   g_out = argv[1];
-  for (const char* target : {"bag_pointcloud2", "bag_imu", "bag_records", "pcd", "ply", "kitti_bin",
-                             "las", "trajectory", "scan_folder", "pose_guess", "run_config",
-                             "json"}) {
+  for (const char* target :
+       {"bag_pointcloud2", "bag_imu", "bag_records", "mcap_records", "cdr_messages",
+        "rosbag2_metadata", "pcd", "ply", "kitti_bin", "las", "trajectory", "scan_folder",
+        "pose_guess", "run_config", "json"}) {
     fs::remove_all(g_out / target);  // seeds only: a rerun leaves no stale files
   }
   fs::create_directories(g_out);
   PointCloud2Seeds();
   ImuSeeds();
   BagRecordSeeds();
+  McapSeeds();
+  CdrSeeds();
+  MetadataSeeds();
   CloudSeeds();
   TrajectorySeeds();
   ConfigAndJsonSeeds();

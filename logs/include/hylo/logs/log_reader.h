@@ -1,6 +1,7 @@
 #pragma once
-// One interface over every recorded log: a ROS1 bag (lidar + IMU) or a scan folder (lidar
-// only). Readers stream: one message at a time, never the whole log in memory.
+// One interface over every recorded log: a ROS1 bag or a ROS 2 recording (rosbag2 directory,
+// sqlite3 or MCAP; a single .mcap file), lidar + IMU, or a scan folder (lidar only). Readers
+// stream: one message at a time, never the whole log in memory.
 
 #include <cstdint>
 #include <memory>
@@ -83,8 +84,10 @@ class LogReader {
   virtual const LogRecovery* recovery() const { return nullptr; }
 };
 
-/// Opens a bag (file) or a scan folder (directory). Throws std::runtime_error with a one-line
-/// reason: missing path, unreadable file, missing topic (listing the topics that exist).
+/// Opens a ROS 2 recording (IsRosbag2: a directory with metadata.yaml or storage files, an MCAP
+/// or sqlite3 file), a scan folder (any other directory) or a ROS1 bag (any other file). Throws
+/// std::runtime_error with a one-line reason: missing path, unreadable file, missing topic
+/// (listing the topics that exist).
 std::unique_ptr<LogReader> OpenLog(const std::string& path, const LogReadOptions& options);
 
 }  // namespace hylo::logs

@@ -14,6 +14,7 @@
 
 #include "hylo/config/run_config.h"
 #include "hylo/io/json.h"
+#include "hylo/logs/log_writer.h"
 #include "hylo/sim/scenario.h"
 #include "hylo/sim/simulator.h"
 
@@ -28,11 +29,13 @@ config::RunConfig ScenarioRunConfig(const SensorSheet& sheet, const std::string&
 /// Every drawn figure of `scenario` (site recipe, sensor, IMU grade, mounting, motion).
 io::Json ScenarioToJson(const Scenario& scenario);
 
-/// Simulates `session` of `scenario` and writes its bag (laid out as `config` reads it),
+/// Simulates `session` of `scenario` and writes its log in `format` (laid out as `config`
+/// reads it),
 /// truth and manifest into `dir` (created if missing). Throws naming the file on I/O errors.
 SessionSummary WriteScenarioSession(
     const Scenario& scenario, const Site& site, SessionId session, const config::RunConfig& config,
-    const std::string& dir, const std::function<void(std::size_t, std::size_t)>& progress = {});
+    const std::string& dir, const std::function<void(std::size_t, std::size_t)>& progress = {},
+    logs::LogFormat format = logs::LogFormat::kRos1);
 
 /// Writes sensor_sheet.yaml and config.yaml into `dir`.
 void WriteScenarioSheet(const SensorSheet& sheet, const config::RunConfig& config,
