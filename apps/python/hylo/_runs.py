@@ -2,6 +2,7 @@
 ``hylo localize`` run it (the same C++ run), returning what they write."""
 
 import json
+import math
 import os
 from dataclasses import dataclass
 
@@ -66,6 +67,8 @@ def localize(log, map, config, guess=None, *, update_after_s=None, c2c_max_dista
 
 def _run(log, config, prior_map, guess, update_after_s, c2c_max_distance_m, out, label, progress):
     handle = load_config(config)
+    if update_after_s is not None and math.isnan(update_after_s):
+        raise ValueError("update_after_s = nan: must be -1 (never) or >= 0 s (None: as configured)")
     bar = make_progress(progress, label, "scans")
     try:
         raw = _hylo.run_log(

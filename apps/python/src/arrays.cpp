@@ -138,7 +138,7 @@ std::vector<io::StampedPose> PosesFromArray(const py::handle& object, const py::
       throw std::invalid_argument(row + ": position and quaternion must be finite, the "
                                   "quaternion of unit norm (within 1e-3)");
     }
-    p.orientation = q.normalized();
+    p.orientation = q;  // as given, so a trajectory written back keeps its digits
   }
   return poses;
 }
