@@ -22,6 +22,7 @@ class Bar:
         self._done = 0
         self._total = 0
         self._drawn = False
+        self._width = 0
 
     def __call__(self, done, total):
         self._done, self._total = done, total
@@ -43,7 +44,10 @@ class Bar:
             width = max(10, shutil.get_terminal_size((80, 20)).columns - len(self._label) - len(line) - 5)
             filled = int(width * min(self._done / self._total, 1.0))
             line = f"|{'#' * filled}{' ' * (width - filled)}| " + line
-        self._stream.write(f"\r{self._label} {line}" + ("\n" if final else ""))
+        line = f"{self._label} {line}"
+        padding = " " * max(self._width - len(line), 0)  # wipe the end of a longer line
+        self._width = len(line)
+        self._stream.write("\r" + line + padding + ("\n" if final else ""))
         self._stream.flush()
         self._drawn = True
 
