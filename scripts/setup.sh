@@ -18,6 +18,9 @@ packages=(
   libtf2-ros-dev libstd-srvs-dev ros-core
   python3-std-srvs python3-nav-msgs python3-sensor-msgs  # rostopic/rosservice on its types
   gnuplot-nox
+  # the Python package (apps/python, `pip install .`), its tests and examples
+  pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest python3-matplotlib
+  python3-setuptools python3-pip python3-venv
   clang libclang-rt-dev  # scripts/fuzz.sh, scripts/sanitize.sh: libFuzzer, sanitizer runtimes
 )
 

@@ -66,6 +66,39 @@ io::Json CloudToCloudJson(const PointCloud& registered_map,
   return j;
 }
 
+// The run's files but summary.json (run_log.h); returns the points written as added tiles.
+std::size_t WriteRunFiles(const RunRequest& request, const Session& session,
+                          const RunResult& run) {
+  const std::string& dir = request.out_dir;
+  const OdometryPipeline& pipeline = session.pipeline();
+  const mapping::PriorMap& prior = session.prior();
+  const Eigen::Vector3d& origin_world = session.origin_world();
+  io::WriteTum(dir + "/trajectory.tum", run.trajectory);
+  io::WriteTum(dir + "/trajectory_live.tum", run.live_trajectory);
+  // Poses that are not a place in the map have a file of their own (odometry.csv's
+  // pose_status says which is which); written only when there are some.
+  const std::vector<io::StampedPose> provisional = session.ProvisionalTrajectory();
+  if (!provisional.empty()) io::WriteTum(dir + "/trajectory_provisional.tum", provisional);
+  WriteOdometryCsv(dir + "/odometry.csv", session.results(), origin_world, request.config.output);
+  WriteTimingCsv(dir + "/timing.csv", session.results());
+  // A tiled prior is never whole in memory: its run writes only what it added, as tiles.
+  const bool tiled = !prior.tiled_dir.empty();
+  const bool added = pipeline.map().run_size() > 0 || !pipeline.map().windowed_out().empty();
+  if (!tiled) WriteWorldCloud(dir + "/map.pcd", pipeline.map().Flatten(), origin_world);
+  if (session.localizing() && !tiled && pipeline.map().run_size() > 0) {
+    WriteWorldCloud(dir + "/map_added.pcd", pipeline.map().FlattenRun(), origin_world);
+  }
+  std::size_t tiles_added = 0;
+  if (tiled && added) {
+    tiles_added = WriteAddedTiles(dir + "/map_added", prior, pipeline,
+                                  request.config.pipeline.map.voxel_size_m);
+  }
+  if (request.config.pipeline.output.dense_map_voxel_m > 0.0) {
+    WriteWorldCloud(dir + "/map_dense.pcd", session.dense_map(), origin_world);
+  }
+  return tiles_added;
+}
+
 }  // namespace
 
 io::Json PipelineCountersJson(const odometry::PipelineCounters& c) {
@@ -125,13 +158,16 @@ std::string ImuFaultsLine(const odometry::QueueCounters& q, std::size_t unread_n
 
 RunResult RunLog(const RunRequest& request) {
   const config::RunConfig& config = request.config;
-  std::error_code ec;
-  std::filesystem::create_directories(request.out_dir, ec);
-  if (ec) {
-    throw std::runtime_error("cannot create the output folder '" + request.out_dir +
-                             "': " + ec.message());
+  const bool write = !request.out_dir.empty();
+  if (write) {
+    std::error_code ec;
+    std::filesystem::create_directories(request.out_dir, ec);
+    if (ec) {
+      throw std::runtime_error("cannot create the output folder '" + request.out_dir +
+                               "': " + ec.message());
+    }
+    config::SaveRunConfig(request.out_dir + "/config.yaml", config);
   }
-  config::SaveRunConfig(request.out_dir + "/config.yaml", config);
   Session session(config.PipelineOptions());
   const OdometryPipeline& pipeline = session.pipeline();
 
@@ -158,6 +194,7 @@ RunResult RunLog(const RunRequest& request) {
     }
     session.AddScan(std::move(message.scan));
     progress.Update(session.scans_added());
+    if (request.on_scan) request.on_scan(session.scans_added());
     if (session.failed()) break;
   }
   session.Finish();
@@ -171,39 +208,16 @@ RunResult RunLog(const RunRequest& request) {
   if (!imu_faults.empty()) {
     std::fprintf(stderr, "warning: %s: IMU: %s\n", request.log.c_str(), imu_faults.c_str());
   }
-  if (session.failed()) throw std::runtime_error(request.log + ": " + pipeline.message());
+  if (session.failed()) throw RunFailed(request.log + ": " + pipeline.message());
   const std::vector<ScanResult>& results = session.results();
-  if (results.empty()) throw std::runtime_error(request.log + ": no scan was processed");
+  if (results.empty()) throw RunFailed(request.log + ": no scan was processed");
 
   RunResult run;
   run.trajectory = session.Trajectory();
   run.live_trajectory = session.LiveTrajectory();
-  io::WriteTum(request.out_dir + "/trajectory.tum", run.trajectory);
-  io::WriteTum(request.out_dir + "/trajectory_live.tum", run.live_trajectory);
-  // Poses that are not a place in the map have a file of their own (odometry.csv's
-  // pose_status says which is which); written only when there are some.
-  const std::vector<io::StampedPose> provisional = session.ProvisionalTrajectory();
-  if (!provisional.empty()) {
-    io::WriteTum(request.out_dir + "/trajectory_provisional.tum", provisional);
-  }
-  WriteOdometryCsv(request.out_dir + "/odometry.csv", results, origin_world, config.output);
-  WriteTimingCsv(request.out_dir + "/timing.csv", results);
-  // A tiled prior is never whole in memory: its run writes only what it added, as tiles.
   const bool tiled = !prior.tiled_dir.empty();
-  const bool added = pipeline.map().run_size() > 0 || !pipeline.map().windowed_out().empty();
-  if (!tiled) WriteWorldCloud(request.out_dir + "/map.pcd", pipeline.map().Flatten(), origin_world);
-  if (localizing && !tiled && pipeline.map().run_size() > 0) {
-    WriteWorldCloud(request.out_dir + "/map_added.pcd", pipeline.map().FlattenRun(), origin_world);
-  }
-  std::size_t tiles_added = 0;
-  if (tiled && added) {
-    tiles_added = WriteAddedTiles(request.out_dir + "/map_added", prior, pipeline,
-                                  config.pipeline.map.voxel_size_m);
-  }
+  const std::size_t tiles_added = write ? WriteRunFiles(request, session, run) : 0;
   const PointCloud& dense = session.dense_map();
-  if (config.pipeline.output.dense_map_voxel_m > 0.0) {
-    WriteWorldCloud(request.out_dir + "/map_dense.pcd", dense, origin_world);
-  }
   const std::vector<estimation::NavState>& finalized = session.finalized();
 
   double path_m = 0.0;
@@ -265,7 +279,7 @@ RunResult RunLog(const RunRequest& request) {
   }
   // The effective configuration beside the figures it produced (config.yaml holds the same).
   j["config"] = config::ToJson(config);
-  io::WriteJsonFile(request.out_dir + "/summary.json", j);
+  if (write) io::WriteJsonFile(request.out_dir + "/summary.json", j);
   return run;
 }
 

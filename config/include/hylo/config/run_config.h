@@ -95,6 +95,18 @@ struct RunConfig {
 RunConfig ParseRunConfig(const std::string& yaml_text, const std::string& source_name);
 /// Reads and parses a file (ConfigError also when the file cannot be read).
 RunConfig LoadRunConfig(const std::string& path);
+/// YAML text: `base` with every key of `overrides` set (maps merged key by key, any other
+/// value replaced), scalars kept as written, so a preset changed in a few keys parses to the
+/// same values as the preset itself. Throws ConfigError naming `source_name` when either text
+/// is malformed or not a map.
+std::string MergeYaml(const std::string& base, const std::string& overrides,
+                      const std::string& source_name);
+/// The keys of a `ground:` section alone (method, smrf, csf) applied to `defaults`: the same
+/// keys, errors and validation as that section of a run configuration. Throws ConfigError
+/// naming `source_name` and the key path (ground.smrf.cell_m, ...).
+terrain::GroundFilterOptions ParseGroundOptions(const std::string& yaml_text,
+                                                const std::string& source_name,
+                                                terrain::GroundFilterOptions defaults);
 /// The effective configuration, every field written, loadable again by ParseRunConfig.
 std::string ToYaml(const RunConfig& config);
 /// Writes ToYaml(config) to `path` (ConfigError when it cannot be written).

@@ -19,7 +19,10 @@
 // frame of the run.
 
 #include <Eigen/Geometry>
+#include <cstddef>
+#include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -38,9 +41,21 @@ struct RunRequest {
   std::optional<Eigen::Isometry3d> guess_world_imu;  ///< T_world_imu guess at the start;
                                                      ///< none with prior_map: a global start
   double c2c_max_distance_m = 0.5;  ///< outlier threshold of the cloud-to-cloud metric, m
-  std::string out_dir;              ///< created if missing
+  std::string out_dir;              ///< created if missing; empty = no file is written (the
+                                    ///< Python package's runs: only the returned result)
   std::string label = "run";        ///< progress label
   bool show_progress = true;        ///< progress on stderr
+  /// Called after each scan enters the session with the number added so far (a front end's
+  /// own progress display). What it throws ends the run and reaches the caller (cancellation).
+  std::function<void(std::size_t scans_added)> on_scan;
+};
+
+/// The log was read but the pipeline gave no trajectory: its start failed (the vehicle
+/// moved during the IMU initialisation, no accepted ICP start) or no scan was processed.
+/// Bad data, not an unreadable file: front ends tell the two apart by this type.
+class RunFailed : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 struct RunResult {
@@ -63,7 +78,8 @@ io::Json LogRecoveryJson(const logs::LogRecovery& recovery);
 std::string ImuFaultsLine(const odometry::QueueCounters& queue, std::size_t unread_non_finite);
 
 /// Runs the log. Throws std::runtime_error naming the file and reason for unreadable input,
-/// a failed initialisation (vehicle moving, no accepted ICP start) or a log with no scan.
+/// RunFailed for a failed initialisation (vehicle moving, no accepted ICP start) or a log
+/// with no scan.
 RunResult RunLog(const RunRequest& request);
 
 }  // namespace hylo::run
