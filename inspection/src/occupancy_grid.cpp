@@ -1,0 +1,101 @@
+#include "hylo/inspection/occupancy_grid.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "hylo/common/option_checks.h"
+
+namespace hylo::inspection {
+namespace {
+
+std::size_t Words(std::size_t bits) { return (bits + 63) / 64; }
+
+// Offsets (in voxels) whose centre distance is within the clearance: the inflation's ball.
+std::vector<Eigen::Vector3i> BallOffsets(double clearance_m, double voxel_m) {
+  const int r = static_cast<int>(std::floor(clearance_m / voxel_m + 1e-9));
+  const double r2 = (clearance_m / voxel_m) * (clearance_m / voxel_m) + 1e-9;
+  std::vector<Eigen::Vector3i> offsets;
+  for (int z = -r; z <= r; ++z) {
+    for (int y = -r; y <= r; ++y) {
+      for (int x = -r; x <= r; ++x) {
+        if (x * x + y * y + z * z <= r2) offsets.emplace_back(x, y, z);
+      }
+    }
+  }
+  return offsets;
+}
+
+}  // namespace
+
+bool OccupancyOptions::IsValid(std::string* why) const {
+  return CheckPositive("voxel_size_m", voxel_size_m, why) &&
+         CheckNonNegative("clearance_m", clearance_m, why) &&
+         (clearance_m <= 20.0 * voxel_size_m ||
+          FailOption("clearance_m", clearance_m, "must be <= 20 x voxel_size_m", why)) &&
+         CheckAtLeast("max_voxels_million", max_voxels_million, 1, "", why);
+}
+
+double OccupancyOptions::BlockedReach() const {
+  return clearance_m + std::sqrt(3.0) * voxel_size_m;
+}
+
+OccupancyGrid OccupancyGrid::Build(const PointCloud& map_local, const Eigen::Vector3d& box_min,
+                                   const Eigen::Vector3d& box_max,
+                                   const OccupancyOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("occupancy options: " + why);
+  OccupancyGrid grid;
+  const float v = static_cast<float>(options.voxel_size_m);
+  grid.voxel_size_ = options.voxel_size_m;
+  if (!box_min.allFinite() || !box_max.allFinite() || (box_max.array() < box_min.array()).any())
+    return grid;  // nothing to look through
+  // Grown so that a point outside the grid cannot block a voxel that a line inside the box
+  // crosses (a blocked voxel lies within clearance + sqrt(3) edge of its point).
+  const Eigen::Vector3d margin = Eigen::Vector3d::Constant(options.clearance_m + 2.0 * v);
+  const VoxelKey lo = VoxelOf((box_min - margin).cast<float>(), v);
+  const VoxelKey hi = VoxelOf((box_max + margin).cast<float>(), v);
+  const Eigen::Matrix<int64_t, 3, 1> dims = hi - lo + VoxelKey::Ones();
+  const double total = static_cast<double>(dims.x()) * dims.y() * dims.z();
+  if (total > options.max_voxels_million * 1e6) {
+    std::ostringstream os;
+    os << "the sight lines span " << dims.x() * v << " m x " << dims.y() * v << " m x "
+       << dims.z() * v << " m: " << total / 1e6 << " million voxels of " << v
+       << " m exceed max_voxels_million = " << options.max_voxels_million
+       << " (use a coarser voxel_size_m or fewer, closer targets)";
+    throw std::runtime_error(os.str());
+  }
+  grid.dims_ = dims.cast<int>();
+  grid.min_corner_ = lo.cast<double>() * options.voxel_size_m;
+  const std::size_t num_voxels = static_cast<std::size_t>(total);
+  std::vector<uint64_t> occupied(Words(num_voxels), 0);
+  for (const Eigen::Vector3f& p : map_local) {
+    if (!p.allFinite()) continue;
+    const Eigen::Vector3i voxel = (VoxelOf(p, v) - lo).cast<int>();
+    if (!grid.Contains(voxel)) continue;
+    const std::size_t index = grid.LinearIndex(voxel);
+    ++grid.summary_.points_in_box;
+    occupied[index >> 6] |= uint64_t{1} << (index & 63);
+  }
+  grid.bits_.assign(occupied.size(), 0);
+  const std::vector<Eigen::Vector3i> ball = BallOffsets(options.clearance_m, options.voxel_size_m);
+  const std::size_t plane = static_cast<std::size_t>(grid.dims_.x()) * grid.dims_.y();
+  for (std::size_t w = 0; w < occupied.size(); ++w) {
+    for (uint64_t word = occupied[w]; word != 0; word &= word - 1) {
+      const std::size_t index = w * 64 + static_cast<std::size_t>(__builtin_ctzll(word));
+      ++grid.summary_.occupied_voxels;
+      const Eigen::Vector3i at(static_cast<int>(index % grid.dims_.x()),
+                               static_cast<int>((index % plane) / grid.dims_.x()),
+                               static_cast<int>(index / plane));
+      for (const Eigen::Vector3i& offset : ball) {
+        const Eigen::Vector3i voxel = at + offset;
+        if (grid.Contains(voxel)) grid.SetBit(grid.LinearIndex(voxel));
+      }
+    }
+  }
+  for (const uint64_t word : grid.bits_) grid.summary_.blocked_voxels += __builtin_popcountll(word);
+  grid.summary_.dims = grid.dims_;
+  return grid;
+}
+
+}  // namespace hylo::inspection
