@@ -316,6 +316,52 @@ void VisitFields(V& v, terrain::GroundFilterOptions& o) {
 }
 
 template <class V>
+void VisitFields(V& v, inspection::OccupancyOptions& o) {
+  v("voxel_size_m", o.voxel_size_m);
+  v("clearance_m", o.clearance_m);
+  v("max_voxels_million", o.max_voxels_million);
+}
+
+template <class V>
+void VisitFields(V& v, inspection::VisibilityOptions& o) {
+  v("camera_height_m", o.camera_height_m);
+  v("min_range_m", o.min_range_m);
+  v("max_range_m", o.max_range_m);
+  v("target_radius_m", o.target_radius_m);
+  v("min_visible_fraction", o.min_visible_fraction);
+  v.Section("occupancy", o.occupancy);
+}
+
+template <class V>
+void VisitFields(V& v, inspection::SearchOptions& o) {
+  v("robot_radius_m", o.robot_radius_m);
+  v("cost_weight", o.cost_weight);
+}
+
+template <class V>
+void VisitFields(V& v, inspection::ViewpointOptions& o) {
+  v("preferred_range_m", o.preferred_range_m);
+  v("range_weight", o.range_weight);
+  v("angle_weight", o.angle_weight);
+  v("traversal_weight", o.traversal_weight);
+}
+
+template <class V>
+void VisitFields(V& v, inspection::TourOptions& o) {
+  v("return_to_start", o.return_to_start);
+  v("exact_max_stops", o.exact_max_stops);
+}
+
+template <class V>
+void VisitFields(V& v, inspection::InspectionOptions& o) {
+  v.Section("visibility", o.visibility);
+  v.Section("search", o.search);
+  v.Section("viewpoint", o.viewpoint);
+  v.Section("tour", o.tour);
+  v("start_snap_radius_m", o.start_snap_radius_m);
+}
+
+template <class V>
 void VisitFields(V& v, RunConfig& run) {
   estimation::OdometryPipelineOptions& p = run.pipeline;
   LidarSection lidar{run.lidar, p.lidar};
@@ -341,6 +387,7 @@ void VisitFields(V& v, RunConfig& run) {
   v.Section("localization", localization);
   v.Section("output", output);
   v.Section("ground", run.ground);
+  v.Section("inspection", run.inspection);
 }
 
 }  // namespace hylo::config

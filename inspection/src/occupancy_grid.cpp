@@ -1,6 +1,8 @@
 #include "hylo/inspection/occupancy_grid.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
@@ -11,15 +13,18 @@ namespace {
 
 std::size_t Words(std::size_t bits) { return (bits + 63) / 64; }
 
-// Offsets (in voxels) whose centre distance is within the clearance: the inflation's ball.
+// Offsets (in voxels) of the voxels that come closer than the clearance to a voxel: the
+// smallest distance between two voxels offset by o is edge * |max(|o| - 1, 0)| (per axis).
 std::vector<Eigen::Vector3i> BallOffsets(double clearance_m, double voxel_m) {
-  const int r = static_cast<int>(std::floor(clearance_m / voxel_m + 1e-9));
-  const double r2 = (clearance_m / voxel_m) * (clearance_m / voxel_m) + 1e-9;
+  const double k = clearance_m / voxel_m;
+  const int r = 1 + static_cast<int>(std::floor(k + 1e-9));
+  const auto gap = [](int o) { return std::max(std::abs(o) - 1, 0); };
   std::vector<Eigen::Vector3i> offsets;
   for (int z = -r; z <= r; ++z) {
     for (int y = -r; y <= r; ++y) {
       for (int x = -r; x <= r; ++x) {
-        if (x * x + y * y + z * z <= r2) offsets.emplace_back(x, y, z);
+        const int g2 = gap(x) * gap(x) + gap(y) * gap(y) + gap(z) * gap(z);
+        if ((x == 0 && y == 0 && z == 0) || g2 < k * k - 1e-9) offsets.emplace_back(x, y, z);
       }
     }
   }
@@ -37,7 +42,7 @@ bool OccupancyOptions::IsValid(std::string* why) const {
 }
 
 double OccupancyOptions::BlockedReach() const {
-  return clearance_m + std::sqrt(3.0) * voxel_size_m;
+  return clearance_m + 2.0 * std::sqrt(3.0) * voxel_size_m;
 }
 
 OccupancyGrid OccupancyGrid::Build(const PointCloud& map_local, const Eigen::Vector3d& box_min,
@@ -51,8 +56,8 @@ OccupancyGrid OccupancyGrid::Build(const PointCloud& map_local, const Eigen::Vec
   if (!box_min.allFinite() || !box_max.allFinite() || (box_max.array() < box_min.array()).any())
     return grid;  // nothing to look through
   // Grown so that a point outside the grid cannot block a voxel that a line inside the box
-  // crosses (a blocked voxel lies within clearance + sqrt(3) edge of its point).
-  const Eigen::Vector3d margin = Eigen::Vector3d::Constant(options.clearance_m + 2.0 * v);
+  // crosses (a blocked voxel lies within BlockedReach of its point).
+  const Eigen::Vector3d margin = Eigen::Vector3d::Constant(options.BlockedReach() + v);
   const VoxelKey lo = VoxelOf((box_min - margin).cast<float>(), v);
   const VoxelKey hi = VoxelOf((box_max + margin).cast<float>(), v);
   const Eigen::Matrix<int64_t, 3, 1> dims = hi - lo + VoxelKey::Ones();

@@ -69,6 +69,7 @@ InspectionPlan PlanInspection(const PointCloud& map_local, const terrain::GridMa
   summary.reachable_cells = std::count(reachable.begin(), reachable.end(), 1);
   plan.camera_z = CameraHeights(grid, plan.passable, options.visibility.camera_height_m);
   summary.seconds_reach = SecondsSince(t0);
+  report("reach", 1, 1);
 
   // 3. The map as voxels over the box the sight lines can cross.
   t0 = Clock::now();
@@ -81,6 +82,7 @@ InspectionPlan PlanInspection(const PointCloud& map_local, const terrain::GridMa
       OccupancyGrid::Build(map_local, box_min, box_max, options.visibility.occupancy);
   summary.occupancy = occupancy.summary();
   summary.seconds_occupancy = SecondsSince(t0);
+  report("occupancy", 1, 1);
 
   // 4-5. Per target: the cells that see it, and the best reachable one.
   t0 = Clock::now();

@@ -29,8 +29,8 @@ std::size_t SnapStart(const CostGrid& costs, const Eigen::Vector2d& start, doubl
     if (d < nearest) nearest = d, best = cell;
   }
   if (nearest <= snap_radius_m) return best;
-  if (!std::isfinite(nearest)) throw std::runtime_error("the costmap has no passable cell");
-  throw std::runtime_error(Format("the start is %.2f m from the nearest passable cell (%.2f m "
+  if (!std::isfinite(nearest)) throw StartNotPassable("the costmap has no passable cell");
+  throw StartNotPassable(Format("the start is %.2f m from the nearest passable cell (%.2f m "
                                   "allowed): not on the costmap's free space",
                                   nearest, snap_radius_m));
 }

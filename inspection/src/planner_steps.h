@@ -11,8 +11,8 @@
 namespace hylo::inspection {
 
 /// The passable cell nearest to `start` (local xy) within `snap_radius_m`, or the cell under
-/// it when passable. Throws std::runtime_error when there is none, saying how far the
-/// nearest passable cell is.
+/// it when passable. Throws StartNotPassable when there is none, saying how far the nearest
+/// passable cell is.
 std::size_t SnapStart(const CostGrid& costs, const Eigen::Vector2d& start, double snap_radius_m);
 
 /// Per cell: elevation + camera height where the robot can stand, NaN elsewhere.

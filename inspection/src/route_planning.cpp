@@ -5,6 +5,7 @@
 #include <map>
 
 #include "hylo/common/check.h"
+#include "hylo/inspection/route_smoothing.h"
 #include "planner_steps.h"
 
 namespace hylo::inspection {
@@ -57,27 +58,6 @@ CostMatrix TravelCosts(const CostGrid& costs, const std::vector<std::size_t>& ce
   return matrix;
 }
 
-// Direction of the step from cell a to cell b, as (dcol, drow).
-Eigen::Vector2i StepOf(const terrain::GridGeometry& g, std::size_t a, std::size_t b) {
-  return {g.Col(b) - g.Col(a), g.Row(b) - g.Row(a)};
-}
-
-// The route's corners: its ends, every change of direction, and every stop.
-std::vector<Waypoint> Corners(const terrain::GridGeometry& g, const std::vector<std::size_t>& cells,
-                              const std::map<std::size_t, int>& stop_at_index) {
-  std::vector<Waypoint> out;
-  for (std::size_t k = 0; k < cells.size(); ++k) {
-    const auto stop = stop_at_index.find(k);
-    const bool turn = k > 0 && k + 1 < cells.size() &&
-                      StepOf(g, cells[k - 1], cells[k]) != StepOf(g, cells[k], cells[k + 1]);
-    if (k == 0 || k + 1 == cells.size() || turn || stop != stop_at_index.end()) {
-      out.push_back({g.CentreLocal(g.Col(cells[k]), g.Row(cells[k])),
-                     stop == stop_at_index.end() ? -1 : stop->second});
-    }
-  }
-  return out;
-}
-
 }  // namespace
 
 void PlanRoute(const CostGrid& costs, const TourOptions& options, InspectionPlan* plan,
@@ -93,8 +73,12 @@ void PlanRoute(const CostGrid& costs, const TourOptions& options, InspectionPlan
   summary.seconds_tour = SecondsSince(t0);
 
   t0 = Clock::now();
-  std::map<std::size_t, int> stop_at_index;  // route cell index -> stop
+  const terrain::GridGeometry& g = costs.geometry();
+  const auto waypoint = [&](std::size_t cell) {
+    return Waypoint{g.CentreLocal(g.Col(cell), g.Row(cell)), -1};
+  };
   plan->route_cells = {plan->start_cell};
+  plan->waypoints = {waypoint(plan->start_cell)};
   double along = 0.0;
   for (std::size_t k = 0; k < order.size(); ++k) {
     if (progress) progress("route", k, order.size());
@@ -106,15 +90,19 @@ void PlanRoute(const CostGrid& costs, const TourOptions& options, InspectionPlan
       const GridPath leg = costs.ShortestPath(nodes.cells[order[k - 1]], stop.cell);
       HYLO_CHECK(leg.found(), "a leg between reachable cells");
       plan->route_cells.insert(plan->route_cells.end(), leg.cells.begin() + 1, leg.cells.end());
-      stop.leg_length_m = leg.length_m;
+      const std::vector<std::size_t> corners = StraightenPath(costs, leg.cells);
+      for (std::size_t c = 1; c < corners.size(); ++c) {
+        plan->waypoints.push_back(waypoint(corners[c]));
+        stop.leg_length_m += (plan->waypoints.back().xy - plan->waypoints.end()[-2].xy).norm();
+      }
       stop.leg_cost = leg.cost;
-      summary.route_length_m += leg.length_m;
+      summary.route_length_m += stop.leg_length_m;
       summary.route_cost += leg.cost;
-      along += leg.length_m;
+      along += stop.leg_length_m;
     }
     if (stop.targets.empty()) continue;  // the start (or the return to it) without a view
     const int stop_index = static_cast<int>(plan->stops.size());
-    stop_at_index[plan->route_cells.size() - 1] = stop_index;
+    plan->waypoints.back().stop = stop_index;
     for (std::size_t j = 0; j < stop.targets.size(); ++j) {
       TargetPlan& t = plan->targets[stop.targets[j]];
       t.stop = stop_index;
@@ -127,7 +115,6 @@ void PlanRoute(const CostGrid& costs, const TourOptions& options, InspectionPlan
   for (const RouteStop& stop : plan->stops) {
     for (const int i : stop.targets) plan->targets[i].order = ++order_number;
   }
-  plan->waypoints = Corners(costs.geometry(), plan->route_cells, stop_at_index);
   if (progress) progress("route", order.size(), order.size());
   summary.seconds_route = SecondsSince(t0);
 }

@@ -161,6 +161,22 @@ TEST_F(PlannerYardTest, TheRouteVisitsEveryViewpointOnPassableCellsAndReturns) {
   EXPECT_EQ(orders, (std::set<int>{1, 2, 3}));
   EXPECT_LE(legs, p.summary.route_length_m + 1e-9);  // the return leg is not a stop's
   ASSERT_GE(p.waypoints.size(), 2u);
+  // Every straight segment between corners stays on passable cells: sampled every 5 mm, each
+  // sample nudged 1 mm to either side so that a segment through a cell corner checks both.
+  const terrain::GridGeometry& g = yard_->grid.geometry();
+  for (std::size_t k = 1; k < p.waypoints.size(); ++k) {
+    const Eigen::Vector2d a = p.waypoints[k - 1].xy, b = p.waypoints[k].xy;
+    const Eigen::Vector2d normal = Eigen::Vector2d(a.y() - b.y(), b.x() - a.x()).normalized();
+    const int samples = 1 + static_cast<int>((b - a).norm() / 0.005);
+    for (int i = 0; i <= samples; ++i) {
+      for (const double side : {-1e-3, 1e-3}) {
+        const Eigen::Vector2d q = a + (b - a) * (double(i) / samples) + side * normal;
+        const auto cell = g.CellOfLocal(q.x(), q.y());
+        ASSERT_TRUE(cell);
+        EXPECT_TRUE(p.passable[g.Index(cell->x(), cell->y())]) << "segment " << k;
+      }
+    }
+  }
   int stops_marked = 0;
   for (const Waypoint& w : p.waypoints) stops_marked += w.stop >= 0;
   EXPECT_EQ(stops_marked, static_cast<int>(p.stops.size()));

@@ -125,9 +125,8 @@ TEST(SegmentBlocked, AgreesWithBruteForceOverEveryOccupiedVoxel) {
   EXPECT_LT(blocked, decided - 300);
 }
 
-// A line the grid calls clear passes every map point by more than clearance - sqrt(3) edge;
-// a blocked one passes some map point within BlockedReach(). Checked by the exact
-// point-to-segment distance.
+// A line the grid calls clear passes every map point at the clearance or more; a blocked one
+// passes some map point within BlockedReach(). Checked by the exact point-to-segment distance.
 TEST(OccupancyGrid, InflationStaysWithinTheStatedClearanceBand) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> up(0.5f, 2.5f);
@@ -138,9 +137,9 @@ TEST(OccupancyGrid, InflationStaysWithinTheStatedClearanceBand) {
   o.clearance_m = 0.25;
   const OccupancyGrid g =
       OccupancyGrid::Build(points, Eigen::Vector3d::Zero(), Eigen::Vector3d::Constant(3.0), o);
-  EXPECT_GT(g.summary().blocked_voxels, 20 * g.summary().occupied_voxels);
+  EXPECT_GT(g.summary().blocked_voxels, 50 * g.summary().occupied_voxels);
   std::uniform_real_distribution<double> u(0.0, 3.0);
-  const double low = o.clearance_m - std::sqrt(3.0) * o.voxel_size_m, high = o.BlockedReach();
+  const double low = o.clearance_m, high = o.BlockedReach();
   int blocked = 0;
   for (int trial = 0; trial < 2000; ++trial) {
     const Eigen::Vector3d a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng));
@@ -154,7 +153,7 @@ TEST(OccupancyGrid, InflationStaysWithinTheStatedClearanceBand) {
       ++blocked;
       EXPECT_LE(nearest, high + 1e-9) << trial;
     } else {
-      EXPECT_GT(nearest, low - 1e-9) << trial;
+      EXPECT_GE(nearest, low - 1e-9) << trial;
     }
   }
   EXPECT_GT(blocked, 200);

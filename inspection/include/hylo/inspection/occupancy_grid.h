@@ -9,11 +9,11 @@
 // free. Voxels follow the project's voxel rule (common/voxel_key.h): a point belongs to voxel
 // floor(p / edge), so the grid's corner lies on a multiple of the edge.
 //
-// Inflation by the clearance c: a voxel is blocked when its centre lies within c of the centre
-// of an occupied voxel. A sight line that enters no blocked voxel therefore passes every map
-// point by more than c - sqrt(3) * edge, and a line blocked by the grid passes some map point
-// within c + sqrt(3) * edge (`BlockedReach`): that band is the tolerance of every test against
-// a truth.
+// Inflation by the clearance c: a voxel is blocked when some point of it lies closer than c
+// to some point of an occupied voxel. A sight line that enters no blocked voxel therefore
+// passes every map point at c or more; a line blocked by the grid passes some map point within
+// c + 2 sqrt(3) edge (`BlockedReach`): that band is the tolerance of every test against a
+// truth.
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -28,14 +28,15 @@ namespace hylo::inspection {
 
 struct OccupancyOptions {
   double voxel_size_m = 0.1;      ///< voxel edge, m
-  double clearance_m = 0.15;      ///< sight lines keep this far from map points: the map's
-                                  ///< noise plus the camera's pose uncertainty on the spot, m
+  double clearance_m = 0.15;      ///< sight lines keep at least this from every map point:
+                                  ///< the map's noise plus the camera's pose uncertainty on
+                                  ///< the spot, m
   int max_voxels_million = 1000;  ///< refuse larger grids (1000 M voxels = 125 MB), million
 
   /// True when usable; otherwise `why` names the field, its value and the constraint.
   bool IsValid(std::string* why) const;
   /// Farthest a point of a blocked voxel can be from the map point that blocked it, m:
-  /// clearance_m + sqrt(3) * voxel_size_m.
+  /// clearance_m + 2 sqrt(3) voxel_size_m.
   double BlockedReach() const;
 };
 

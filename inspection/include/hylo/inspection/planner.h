@@ -10,7 +10,8 @@
 //   5. per target, the best visible and reachable cell (viewpoint_selection.h), or the
 //      reason there is none (occluded, unreachable);
 //   6. travel costs between the viewpoints (Dijkstra from each), the order of visits
-//      (tour.h), and the route on the costmap (A* per leg).
+//      (tour.h), and the route on the costmap (A* per leg, straightened where the straight
+//      line stays on passable cells: route_smoothing.h).
 // Everything is in the grid's local frame; the caller converts (hylo::io reads and writes
 // the map frame). Single-threaded; no file I/O.
 
@@ -18,6 +19,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -66,11 +68,13 @@ struct TargetPlan {
 struct RouteStop {
   std::size_t cell = 0;          ///< grid index
   std::vector<int> targets;      ///< indices into the targets given
-  double leg_length_m = 0.0;     ///< route length from the previous stop, m
-  double leg_cost = 0.0;         ///< weighted cost of that leg
+  double leg_length_m = 0.0;     ///< route length from the previous stop (along the
+                                 ///< waypoints), m
+  double leg_cost = 0.0;         ///< weighted cost of that leg's cell path
 };
 
-/// A corner of the route (a straight run of cells is one segment).
+/// A corner of the route: between two corners the robot drives straight, over passable cells
+/// only (route_smoothing.h).
 struct Waypoint {
   Eigen::Vector2d xy = Eigen::Vector2d::Zero();  ///< local, m (a cell centre)
   int stop = -1;                                 ///< index into stops where the robot stops
@@ -81,8 +85,8 @@ struct InspectionSummary {
   std::size_t planned = 0, occluded = 0, unreachable = 0;
   OccupancySummary occupancy;
   TourMethod tour_method = TourMethod::kTrivial;
-  double route_length_m = 0.0;   ///< whole route, m
-  double route_cost = 0.0;       ///< weighted (what the tour minimised)
+  double route_length_m = 0.0;   ///< whole route along the waypoints, m
+  double route_cost = 0.0;       ///< weighted cost of the cell paths (what the tour minimised)
   double seconds_occupancy = 0.0, seconds_reach = 0.0, seconds_visibility = 0.0,
          seconds_travel_costs = 0.0, seconds_tour = 0.0, seconds_route = 0.0;
 };
@@ -92,12 +96,18 @@ struct InspectionPlan {
   std::vector<TargetPlan> targets;             ///< one per target, in the order given
   std::vector<TargetVisibility> visibility;    ///< one per target
   std::vector<RouteStop> stops;                ///< in visiting order
-  std::vector<std::size_t> route_cells;        ///< every cell from the start on
+  std::vector<std::size_t> route_cells;        ///< every cell of the legs' cell paths
   std::vector<Waypoint> waypoints;             ///< the route's corners, start first
   std::vector<uint8_t> passable;               ///< per cell (PassableCells)
   std::vector<double> reach_cost;              ///< per cell from the start, +inf: unreachable
   std::vector<float> camera_z;                 ///< per cell, local, NaN where not standable
   InspectionSummary summary;
+};
+
+/// The start is not on the costmap's free space (nor within start_snap_radius_m of it).
+class StartNotPassable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 /// Called as work progresses: stage name ("occupancy", "reach", "visibility", "travel
@@ -108,8 +118,8 @@ using InspectionProgress =
 /// Plans the inspection. `grid` needs the layers elevation (local heights) and cost, with
 /// `classes` per cell; `map_local` and `targets` are in the grid's local frame; `start` is a
 /// local xy. Throws std::invalid_argument for invalid options or targets (naming the target)
-/// or an id given twice, and std::runtime_error when the start is not within
-/// start_snap_radius_m of a passable cell or the occupancy grid would be too large.
+/// or an id given twice, StartNotPassable when the start is not within start_snap_radius_m of
+/// a passable cell, and std::runtime_error when the occupancy grid would be too large.
 InspectionPlan PlanInspection(const PointCloud& map_local, const terrain::GridMap& grid,
                               const std::vector<terrain::CellClass>& classes,
                               const std::vector<Target>& targets, const Eigen::Vector2d& start,
