@@ -72,8 +72,9 @@ OccupancyGrid OccupancyGrid::Build(const PointCloud& map_local, const Eigen::Vec
   }
   grid.dims_ = dims.cast<int>();
   grid.min_corner_ = lo.cast<double>() * options.voxel_size_m;
-  const std::size_t num_voxels = static_cast<std::size_t>(total);
-  std::vector<uint64_t> occupied(Words(num_voxels), 0);
+  grid.row_stride_ = Words(grid.dims_.x()) * 64;
+  const std::size_t rows = static_cast<std::size_t>(grid.dims_.y()) * grid.dims_.z();
+  std::vector<uint64_t> occupied(rows * grid.row_stride_ / 64, 0);
   for (const Eigen::Vector3f& p : map_local) {
     if (!p.allFinite()) continue;
     const Eigen::Vector3i voxel = (VoxelOf(p, v) - lo).cast<int>();
@@ -84,14 +85,15 @@ OccupancyGrid OccupancyGrid::Build(const PointCloud& map_local, const Eigen::Vec
   }
   grid.bits_.assign(occupied.size(), 0);
   const std::vector<Eigen::Vector3i> ball = BallOffsets(options.clearance_m, options.voxel_size_m);
-  const std::size_t plane = static_cast<std::size_t>(grid.dims_.x()) * grid.dims_.y();
+  const std::size_t words_per_row = grid.row_stride_ / 64;
   for (std::size_t w = 0; w < occupied.size(); ++w) {
+    if (occupied[w] == 0) continue;
+    const std::size_t row = w / words_per_row;
+    const int x0 = static_cast<int>((w % words_per_row) * 64);
+    const int y = static_cast<int>(row % grid.dims_.y()), z = static_cast<int>(row / grid.dims_.y());
     for (uint64_t word = occupied[w]; word != 0; word &= word - 1) {
-      const std::size_t index = w * 64 + static_cast<std::size_t>(__builtin_ctzll(word));
       ++grid.summary_.occupied_voxels;
-      const Eigen::Vector3i at(static_cast<int>(index % grid.dims_.x()),
-                               static_cast<int>((index % plane) / grid.dims_.x()),
-                               static_cast<int>(index / plane));
+      const Eigen::Vector3i at(x0 + __builtin_ctzll(word), y, z);
       for (const Eigen::Vector3i& offset : ball) {
         const Eigen::Vector3i voxel = at + offset;
         if (grid.Contains(voxel)) grid.SetBit(grid.LinearIndex(voxel));
@@ -100,7 +102,26 @@ OccupancyGrid OccupancyGrid::Build(const PointCloud& map_local, const Eigen::Vec
   }
   for (const uint64_t word : grid.bits_) grid.summary_.blocked_voxels += __builtin_popcountll(word);
   grid.summary_.dims = grid.dims_;
+  grid.MarkBricks();
   return grid;
+}
+
+void OccupancyGrid::MarkBricks() {
+  brick_dims_ = (dims_.array() + kBrick - 1) / kBrick;
+  const std::size_t bricks = static_cast<std::size_t>(brick_dims_.prod());
+  brick_bits_.assign(Words(bricks), 0);
+  const std::size_t words_per_row = row_stride_ / 64;
+  for (std::size_t w = 0; w < bits_.size(); ++w) {
+    if (bits_[w] == 0) continue;
+    const std::size_t row = w / words_per_row;
+    const std::size_t by = row % dims_.y() / kBrick, bz = row / dims_.y() / kBrick;
+    for (int byte = 0; byte < 8; ++byte) {  // a byte of a row's word is one brick along x
+      if (((bits_[w] >> (8 * byte)) & 0xff) == 0) continue;
+      const std::size_t bx = ((w % words_per_row) * 64 + 8 * byte) / kBrick;
+      const std::size_t i = (bz * brick_dims_.y() + by) * brick_dims_.x() + bx;
+      brick_bits_[i >> 6] |= uint64_t{1} << (i & 63);
+    }
+  }
 }
 
 }  // namespace hylo::inspection

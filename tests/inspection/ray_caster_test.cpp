@@ -125,6 +125,32 @@ TEST(SegmentBlocked, AgreesWithBruteForceOverEveryOccupiedVoxel) {
   EXPECT_LT(blocked, decided - 300);
 }
 
+// The two-level walk (bricks, then voxels in the bricks that hold a blocked one) answers as
+// the plain voxel walk does, on a grid with clutter in some bricks and none in others.
+TEST(SegmentBlocked, BrickWalkAnswersAsTheVoxelWalk) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> clutter(2.f, 6.f);
+  PointCloud points(300);
+  for (auto& p : points) p = {clutter(rng), clutter(rng), 0.2f * clutter(rng)};
+  OccupancyOptions o;
+  o.voxel_size_m = 0.1;
+  o.clearance_m = 0.12;
+  const OccupancyGrid g = OccupancyGrid::Build(points, Eigen::Vector3d::Zero(),
+                                               Eigen::Vector3d(9.0, 9.0, 2.0), o);
+  std::uniform_real_distribution<double> u(-1.0, 10.0), uz(-0.5, 2.5);
+  int blocked = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Eigen::Vector3d a(u(rng), u(rng), uz(rng)), b(u(rng), u(rng), uz(rng));
+    const bool plain = WalkVoxels(g, a, b, [&g](const Eigen::Vector3i& v) {
+      return g.TestBit(g.LinearIndex(v));
+    });
+    ASSERT_EQ(SegmentBlocked(g, a, b), plain) << trial;
+    blocked += plain;
+  }
+  EXPECT_GT(blocked, 2000);
+  EXPECT_LT(blocked, 18000);
+}
+
 // A line the grid calls clear passes every map point at the clearance or more; a blocked one
 // passes some map point within BlockedReach(). Checked by the exact point-to-segment distance.
 TEST(OccupancyGrid, InflationStaysWithinTheStatedClearanceBand) {

@@ -79,15 +79,17 @@ template <class Visit>
 void CostGrid::ForEachStep(std::size_t cell, Visit&& visit) const {
   static constexpr int kDc[8] = {1, -1, 0, 0, 1, 1, -1, -1};
   static constexpr int kDr[8] = {0, 0, 1, -1, 1, -1, 1, -1};
-  const int col = geometry_.Col(cell), row = geometry_.Row(cell);
+  const int width = geometry_.width;
+  const int row = static_cast<int>(cell / width), col = static_cast<int>(cell) - row * width;
+  const bool inside = col > 0 && row > 0 && col + 1 < width && row + 1 < geometry_.height;
   const double res = geometry_.resolution_m;
   for (int k = 0; k < 8; ++k) {
-    const int c = col + kDc[k], r = row + kDr[k];
-    if (!geometry_.Contains(c, r)) continue;
-    const std::size_t next = geometry_.Index(c, r);
+    if (!inside && !geometry_.Contains(col + kDc[k], row + kDr[k])) continue;
+    const std::size_t next = cell + kDc[k] + static_cast<std::ptrdiff_t>(kDr[k]) * width;
     if (!passable_[next]) continue;
     const bool diagonal = k >= 4;
-    if (diagonal && !(passable_[geometry_.Index(c, row)] && passable_[geometry_.Index(col, r)]))
+    if (diagonal && !(passable_[cell + kDc[k]] &&
+                      passable_[cell + static_cast<std::ptrdiff_t>(kDr[k]) * width]))
       continue;  // would cut the corner of an impassable cell
     const double length = diagonal ? res * M_SQRT2 : res;
     visit(next, length * 0.5 * (factor_[cell] + factor_[next]), length);

@@ -67,9 +67,20 @@ class OccupancyGrid {
     return (voxel.array() >= 0).all() && (voxel.array() < dims_.array()).all();
   }
   std::size_t LinearIndex(const Eigen::Vector3i& voxel) const {
-    return (static_cast<std::size_t>(voxel.z()) * dims_.y() + voxel.y()) * dims_.x() + voxel.x();
+    return (static_cast<std::size_t>(voxel.z()) * dims_.y() + voxel.y()) * row_stride_ + voxel.x();
   }
   bool TestBit(std::size_t index) const { return (bits_[index >> 6] >> (index & 63)) & 1u; }
+
+  /// Bricks of kBrick^3 voxels: brick b holds voxels [kBrick b, kBrick (b + 1)) per axis.
+  static constexpr int kBrick = 8;
+  const Eigen::Vector3i& brick_dims() const { return brick_dims_; }
+  /// True when the brick holds a blocked voxel (`brick` inside brick_dims()).
+  bool BrickBlocked(const Eigen::Vector3i& brick) const {
+    const std::size_t i =
+        (static_cast<std::size_t>(brick.z()) * brick_dims_.y() + brick.y()) * brick_dims_.x() +
+        brick.x();
+    return (brick_bits_[i >> 6] >> (i & 63)) & 1u;
+  }
 
   /// Continuous voxel coordinates of a local point: voxel v spans [v, v + 1) per axis.
   Eigen::Vector3d ToVoxelCoordinates(const Eigen::Vector3d& point_local) const {
@@ -83,10 +94,16 @@ class OccupancyGrid {
  private:
   void SetBit(std::size_t index) { bits_[index >> 6] |= uint64_t{1} << (index & 63); }
 
+  void MarkBricks();
+
   Eigen::Vector3i dims_ = Eigen::Vector3i::Zero();
   Eigen::Vector3d min_corner_ = Eigen::Vector3d::Zero();  ///< local position of voxel (0,0,0)
   double voxel_size_ = 0.1;
+  std::size_t row_stride_ = 0;  ///< bits per row: dims_.x() rounded up to 64, so a word of
+                                ///< bits_ never spans two rows
   std::vector<uint64_t> bits_;  ///< blocked voxels, x fastest
+  Eigen::Vector3i brick_dims_ = Eigen::Vector3i::Zero();
+  std::vector<uint64_t> brick_bits_;  ///< bricks holding a blocked voxel
   OccupancySummary summary_;
 };
 

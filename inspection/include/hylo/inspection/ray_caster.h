@@ -6,6 +6,10 @@
 // face, until the end. Every voxel the segment's interior crosses is visited once; a segment
 // that only touches an edge or corner of a voxel (a set of measure zero) may or may not
 // visit it.
+//
+// SegmentBlocked walks twice: first the grid's bricks (8^3 voxels, OccupancyGrid keeps which
+// hold a blocked voxel), then the voxels only inside the bricks that do. Most of a sight line
+// runs through empty air, so it crosses a brick in one step instead of eight or more.
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -17,17 +21,14 @@
 
 namespace hylo::inspection {
 
-/// Calls `visit(voxel)` for each voxel of `grid` the segment from `a` to `b` (local frame)
-/// crosses, from `a` on; the part outside the grid is skipped. Stops and returns true as soon
-/// as `visit` returns true; false when it never did.
+/// The DDA on a lattice of unit cells [0, dims): the segment q0 + t d for t in [t0, t1]
+/// (lattice coordinates). Calls visit(cell, t_in, t_out) for each cell crossed, in order,
+/// with the parameter range the segment spends in it; stops and returns true as soon as visit
+/// returns true.
 template <class Visit>
-bool WalkVoxels(const OccupancyGrid& grid, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                Visit&& visit) {
-  const Eigen::Vector3d q0 = grid.ToVoxelCoordinates(a);
-  const Eigen::Vector3d d = grid.ToVoxelCoordinates(b) - q0;
-  const Eigen::Vector3i& dims = grid.dims();
-  // Clip the parameter range [0, 1] to the grid's box (slabs).
-  double t_enter = 0.0, t_exit = 1.0;
+bool WalkLattice(const Eigen::Vector3i& dims, const Eigen::Vector3d& q0, const Eigen::Vector3d& d,
+                 double t0, double t1, Visit&& visit) {
+  // Clip [t0, t1] to the lattice's box (slabs).
   for (int i = 0; i < 3; ++i) {
     if (d[i] == 0.0) {
       if (q0[i] < 0.0 || q0[i] >= dims[i]) return false;
@@ -35,30 +36,42 @@ bool WalkVoxels(const OccupancyGrid& grid, const Eigen::Vector3d& a, const Eigen
     }
     double t_low = (0.0 - q0[i]) / d[i], t_high = (dims[i] - q0[i]) / d[i];
     if (t_low > t_high) std::swap(t_low, t_high);
-    t_enter = std::max(t_enter, t_low);
-    t_exit = std::min(t_exit, t_high);
+    t0 = std::max(t0, t_low);
+    t1 = std::min(t1, t_high);
   }
-  if (!(t_enter <= t_exit)) return false;
-  const Eigen::Vector3d start = q0 + t_enter * d;
-  Eigen::Vector3i voxel, step;
-  Eigen::Vector3d t_max, t_delta;
+  if (!(t0 <= t1)) return false;
+  int cell[3], step[3];
+  double t_max[3], t_delta[3];
   for (int i = 0; i < 3; ++i) {
-    voxel[i] = std::clamp(static_cast<int>(std::floor(start[i])), 0, dims[i] - 1);
+    cell[i] = std::clamp(static_cast<int>(std::floor(q0[i] + t0 * d[i])), 0, dims[i] - 1);
     step[i] = d[i] > 0.0 ? 1 : (d[i] < 0.0 ? -1 : 0);
-    const double boundary = voxel[i] + (step[i] > 0 ? 1 : 0);
+    const double boundary = cell[i] + (step[i] > 0 ? 1 : 0);
     t_max[i] = step[i] != 0 ? (boundary - q0[i]) / d[i] : std::numeric_limits<double>::infinity();
     t_delta[i] = step[i] != 0 ? 1.0 / std::abs(d[i]) : std::numeric_limits<double>::infinity();
   }
+  double t_in = t0;
   while (true) {
-    if (visit(static_cast<const Eigen::Vector3i&>(voxel))) return true;
-    int axis = 0;
-    if (t_max[1] < t_max[axis]) axis = 1;
+    int axis = t_max[1] < t_max[0] ? 1 : 0;
     if (t_max[2] < t_max[axis]) axis = 2;
-    if (t_max[axis] > t_exit) return false;
-    voxel[axis] += step[axis];
-    if (voxel[axis] < 0 || voxel[axis] >= dims[axis]) return false;
+    const double t_out = std::min(t_max[axis], t1);
+    if (visit(Eigen::Vector3i(cell[0], cell[1], cell[2]), t_in, t_out)) return true;
+    if (t_max[axis] > t1) return false;
+    cell[axis] += step[axis];
+    if (cell[axis] < 0 || cell[axis] >= dims[axis]) return false;
+    t_in = t_max[axis];
     t_max[axis] += t_delta[axis];
   }
+}
+
+/// Calls `visit(voxel)` for each voxel of `grid` the segment from `a` to `b` (local frame)
+/// crosses, from `a` on; the part outside the grid is skipped. Stops and returns true as soon
+/// as `visit` returns true; false when it never did.
+template <class Visit>
+bool WalkVoxels(const OccupancyGrid& grid, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                Visit&& visit) {
+  const Eigen::Vector3d q0 = grid.ToVoxelCoordinates(a);
+  return WalkLattice(grid.dims(), q0, grid.ToVoxelCoordinates(b) - q0, 0.0, 1.0,
+                     [&visit](const Eigen::Vector3i& voxel, double, double) { return visit(voxel); });
 }
 
 /// True when the segment from `a` to `b` crosses a blocked voxel.
