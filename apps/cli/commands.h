@@ -18,6 +18,7 @@ void AddLocalizeCommand(CLI::App& root);
 void AddTileCommand(CLI::App& root);
 void AddSimulateCommand(CLI::App& root);
 void AddTraversabilityCommand(CLI::App& root);
+void AddInspectCommand(CLI::App& root);
 void AddEvalCommand(CLI::App& root);
 void AddCompareCommand(CLI::App& root);
 void AddDemoCommand(CLI::App& root);

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   hylo::cli::AddTileCommand(app);
   hylo::cli::AddSimulateCommand(app);
   hylo::cli::AddTraversabilityCommand(app);
+  hylo::cli::AddInspectCommand(app);
   hylo::cli::AddEvalCommand(app);
   hylo::cli::AddCompareCommand(app);
   hylo::cli::AddDemoCommand(app);

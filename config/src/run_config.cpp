@@ -82,7 +82,7 @@ bool RunConfig::IsValid(std::string* why) const {
   }
   if (!CheckSection(T_imu_lidar, "T_imu_lidar", why) ||
       !CheckSection(prior_map, "prior_map", why) || !CheckSection(output, "output", why) ||
-      !CheckSection(ground, "ground", why)) {
+      !CheckSection(ground, "ground", why) || !CheckSection(inspection, "inspection", why)) {
     return false;
   }
   if (!initial_guess.empty()) {

@@ -14,6 +14,7 @@
 #include "config_sections.h"
 #include "fields_estimation.h"
 #include "fields_ground.h"
+#include "fields_inspection.h"
 #include "fields_localization.h"
 #include "fields_sensors.h"
 
@@ -62,6 +63,9 @@ void VisitFields(V& v, RunConfig& run) {
   v.Section("ground", run.ground,
             "ground extraction of a finished map (the mapping chain of hylo demo); the defaults "
             "suit a ground robot's map, and both back-ends' options are checked whichever runs");
+  v.Section("inspection", run.inspection,
+            "inspection planning (hylo inspect): where to stand to see each target, and the "
+            "route there");
 }
 
 }  // namespace hylo::config

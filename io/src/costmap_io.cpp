@@ -206,16 +206,32 @@ GridMap ReadAsciiGrid(const std::string& path, const std::string& layer) {
   if (!centre && !(header.count("xllcorner") && header.count("yllcorner"))) {
     throw std::runtime_error(path + ": missing xllcorner/yllcorner");
   }
-  GridGeometry g;
-  g.width = static_cast<int>(header["ncols"]);
-  g.height = static_cast<int>(header["nrows"]);
-  g.resolution_m = header["cellsize"];
-  if (g.width <= 0 || g.height <= 0 || !(g.resolution_m > 0.0)) {
-    throw std::runtime_error(path + ": ncols, nrows and cellsize must be positive");
+  const double ncols = header["ncols"], nrows = header["nrows"];
+  if (!(ncols >= 1 && ncols <= 1e8 && nrows >= 1 && nrows <= 1e8) ||
+      ncols != std::floor(ncols) || nrows != std::floor(nrows) ||
+      !(header["cellsize"] > 0.0 && std::isfinite(header["cellsize"]))) {
+    throw std::runtime_error(path + ": ncols, nrows and cellsize must be positive (and ncols, "
+                             "nrows whole numbers)");
   }
+  // Each value takes at least two bytes (a digit and a separator): a header that promises
+  // more values than the file can hold is refused before the grid is allocated.
+  const std::streampos values_start = in.tellg();
+  in.seekg(0, std::ios::end);
+  const double bytes_left = static_cast<double>(in.tellg() - values_start);
+  in.seekg(values_start);
+  if (2.0 * ncols * nrows > bytes_left + 1.0) {
+    throw std::runtime_error(path + ": the header announces " + FormatNumber(ncols * nrows, "%.0f") +
+                             " values, more than the file's " + FormatNumber(bytes_left, "%.0f") +
+                             " bytes can hold");
+  }
+  GridGeometry g;
+  g.width = static_cast<int>(ncols);
+  g.height = static_cast<int>(nrows);
+  g.resolution_m = header["cellsize"];
   const double half = centre ? 0.5 * g.resolution_m : 0.0;
   g.origin_world = {header[centre ? "xllcenter" : "xllcorner"] - half,
                     header[centre ? "yllcenter" : "yllcorner"] - half, 0.0};
+  if (!g.origin_world.allFinite()) throw std::runtime_error(path + ": the corner is not finite");
   GridMap grid(g);
   std::vector<float>& values = grid.AddLayer(layer, std::nanf(""));
   const bool has_nodata = header.count("nodata_value") > 0;
@@ -232,6 +248,41 @@ GridMap ReadAsciiGrid(const std::string& path, const std::string& layer) {
     }
   }
   return grid;
+}
+
+CostmapLayers ReadCostmapLayers(const std::string& dir) {
+  namespace fs = std::filesystem;
+  const auto path = [&](const char* layer) {
+    return (fs::path(dir) / "layers" / (std::string(layer) + ".asc")).string();
+  };
+  if (!fs::is_directory(dir)) throw std::runtime_error(dir + ": not a costmap folder (missing)");
+  CostmapLayers out;
+  out.grid = ReadAsciiGrid(path(terrain::layers::kElevation), terrain::layers::kElevation);
+  const GridGeometry& g = out.grid.geometry();
+  for (const char* layer : {terrain::layers::kCost, terrain::layers::kClass}) {
+    GridMap other = ReadAsciiGrid(path(layer), layer);
+    const GridGeometry& o = other.geometry();
+    if (o.width != g.width || o.height != g.height ||
+        std::abs(o.resolution_m - g.resolution_m) > 1e-9 ||
+        (o.origin_world - g.origin_world).norm() > 1e-6) {
+      throw std::runtime_error(path(layer) + ": its grid does not lie on " +
+                               path(terrain::layers::kElevation) + "'s cells");
+    }
+    out.grid.AddLayer(layer, 0.f) = other.Layer(layer);
+  }
+  const std::vector<float>& class_layer = out.grid.Layer(terrain::layers::kClass);
+  out.classes.resize(class_layer.size(), CellClass::kUnknown);
+  for (std::size_t i = 0; i < class_layer.size(); ++i) {
+    const float v = class_layer[i];
+    if (std::isnan(v)) continue;
+    if (!(v >= 0.f && v < terrain::kNumCellClasses) || v != std::floor(v)) {
+      throw std::runtime_error(path(terrain::layers::kClass) + ": value " + FormatNumber(v, "%g") +
+                               " at row " + std::to_string(g.height - 1 - g.Row(i)) +
+                               " is not a cell class (0 unknown, 1 free, 2 cost, 3 lethal)");
+    }
+    out.classes[i] = static_cast<CellClass>(static_cast<int>(v));
+  }
+  return out;
 }
 
 std::vector<std::string> WriteTraversabilityFiles(const std::string& dir,

@@ -323,5 +323,43 @@ TEST(RunConfig, GroundSectionParsesValidatesAndRoundTrips) {
   ExpectConfigError("ground: {csf: {hole_fill: sideways}}\n", {"ground.csf.hole_fill"});
 }
 
+// The inspection section: the planner's defaults, every sub-section read, validated and written
+// back.
+TEST(RunConfig, InspectionSectionParsesValidatesAndRoundTrips) {
+  const RunConfig defaults = ParseRunConfig("", "empty.yaml");
+  const inspection::InspectionOptions library;
+  EXPECT_DOUBLE_EQ(defaults.inspection.visibility.camera_height_m,
+                   library.visibility.camera_height_m);
+  EXPECT_DOUBLE_EQ(defaults.inspection.visibility.occupancy.clearance_m,
+                   library.visibility.occupancy.clearance_m);
+  const RunConfig config = ParseRunConfig(
+      "inspection:\n  visibility: {camera_height_m: 1.5, max_range_m: 20,\n"
+      "    occupancy: {voxel_size_m: 0.2, clearance_m: 0.3}}\n"
+      "  search: {robot_radius_m: 0.5}\n  viewpoint: {preferred_range_m: 8}\n"
+      "  tour: {return_to_start: false, exact_max_stops: 10}\n  start_snap_radius_m: 1\n",
+      "test.yaml");
+  const RunConfig back = ParseRunConfig(ToYaml(config), "saved.yaml");
+  for (const RunConfig* c : {&config, &back}) {
+    const inspection::InspectionOptions& o = c->inspection;
+    EXPECT_DOUBLE_EQ(o.visibility.camera_height_m, 1.5);
+    EXPECT_DOUBLE_EQ(o.visibility.max_range_m, 20.0);
+    EXPECT_DOUBLE_EQ(o.visibility.occupancy.voxel_size_m, 0.2);
+    EXPECT_DOUBLE_EQ(o.visibility.occupancy.clearance_m, 0.3);
+    EXPECT_DOUBLE_EQ(o.search.robot_radius_m, 0.5);
+    EXPECT_DOUBLE_EQ(o.viewpoint.preferred_range_m, 8.0);
+    EXPECT_FALSE(o.tour.return_to_start);
+    EXPECT_EQ(o.tour.exact_max_stops, 10);
+    EXPECT_DOUBLE_EQ(o.start_snap_radius_m, 1.0);
+  }
+  ExpectConfigError("inspection: {visibility: {camera_hight_m: 1}}\n",
+                    {"inspection.visibility.camera_hight_m", "unknown key"});
+  ExpectConfigError("inspection: {visibility: {min_range_m: 30}}\n",
+                    {"inspection.visibility.min_range_m = 30", "max_range_m"});
+  ExpectConfigError("inspection: {visibility: {occupancy: {voxel_size_m: 0}}}\n",
+                    {"inspection.visibility.occupancy.voxel_size_m = 0"});
+  ExpectConfigError("inspection: {tour: {exact_max_stops: 40}}\n",
+                    {"inspection.tour.exact_max_stops = 40"});
+}
+
 }  // namespace
 }  // namespace hylo::config

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "hylo/inspection/planner.h"
 #include "hylo/odometry/odometry_pipeline.h"
 #include "hylo/logs/log_reader.h"
 #include "hylo/mapping/prior_map.h"
@@ -79,6 +80,9 @@ struct RunConfig {
   /// each back-end's options; defaults for a ground robot's map (GroundFilterOptions::
   /// ForRobotMaps: SMRF, elevation threshold 0.10 m).
   terrain::GroundFilterOptions ground = terrain::GroundFilterOptions::ForRobotMaps();
+  /// Inspection planning on the run's crafted map and costmap (`hylo inspect --config`,
+  /// `hylo demo`): camera, ranges, voxels and clearance, robot radius, viewpoint score, tour.
+  inspection::InspectionOptions inspection;
 
   /// Checks every section; *why names the key path, the value and the constraint.
   bool IsValid(std::string* why) const;

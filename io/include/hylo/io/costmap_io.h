@@ -66,6 +66,18 @@ void WriteAsciiGrid(const std::string& path, const terrain::GridMap& grid, const
 /// std::runtime_error naming the file and the reason (missing key, bad or missing values).
 terrain::GridMap ReadAsciiGrid(const std::string& path, const std::string& layer);
 
+/// The layers a planner needs from a costmap folder.
+struct CostmapLayers {
+  terrain::GridMap grid;                    ///< layers elevation (map-frame heights), cost, class
+  std::vector<terrain::CellClass> classes;  ///< one per cell
+};
+
+/// Reads `dir`/layers/{elevation,cost,class}.asc as WriteTraversabilityFiles wrote them. The
+/// grid's origin_world is its lower-left corner with z = 0, so local heights are the map's.
+/// Throws std::runtime_error naming the file and the reason: missing or unreadable, a grid
+/// that does not lie on elevation.asc's cells, a class that is not 0..3.
+CostmapLayers ReadCostmapLayers(const std::string& dir);
+
 /// Every traversability output in `dir` (created if missing): costmap.yaml + costmap.pgm,
 /// costmap.png and layers/<layer>.asc for each grid layer (elevation in world heights).
 /// Returns the written paths.
