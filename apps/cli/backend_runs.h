@@ -19,7 +19,7 @@ namespace hylo::cli {
 const std::vector<std::string>& AllBackends();
 
 struct BackendRunsRequest {
-  std::string log;           ///< ROS1 bag or scan folder
+  std::string log;           ///< ROS1 bag, ROS 2 recording or scan folder
   std::string config_path;   ///< run configuration (YAML); its backend key is overridden
   std::string prior_map;     ///< prior map (PCD/PLY); empty = SLAM from scratch
   std::string guess;         ///< T_world_imu guess, localization::ParsePoseGuess text

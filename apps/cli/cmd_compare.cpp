@@ -101,7 +101,7 @@ void AddCompareCommand(CLI::App& root) {
   BackendRunsRequest& r = args->request;
   CLI::App* cmd = root.add_subcommand(
       "compare", "The same log through every estimator back-end, compared in one table");
-  cmd->add_option("--log", r.log, "ROS1 bag or scan folder")->required();
+  cmd->add_option("--log", r.log, "the log: a ROS1 bag, a ROS 2 recording (rosbag2 directory or .mcap) or a scan folder")->required();
   cmd->add_option("--map", r.prior_map, "prior map (PCD/PLY): localize instead of SLAM");
   cmd->add_option("--guess", r.guess,
                   "with --map: T_world_imu guess, \"x y z roll pitch yaw\" (m, deg) or 16 "

@@ -65,7 +65,7 @@ void RunLocalize(const LocalizeArgs& args) {
 void AddLocalizeCommand(CLI::App& root) {
   auto args = std::make_shared<LocalizeArgs>();
   CLI::App* cmd = root.add_subcommand("localize", "Localization in a prior map (+ hybrid mode)");
-  cmd->add_option("--log", args->log, "ROS1 bag or scan folder")->required();
+  cmd->add_option("--log", args->log, "the log: a ROS1 bag, a ROS 2 recording (rosbag2 directory or .mcap) or a scan folder")->required();
   cmd->add_option("--map", args->map,
                   "prior map: PCD/PLY/LAS (world frame), or a tiled map directory (hylo tile), "
                   "streamed around the vehicle")

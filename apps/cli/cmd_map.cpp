@@ -48,7 +48,7 @@ void RunMap(const MapArgs& args) {
 void AddMapCommand(CLI::App& root) {
   auto args = std::make_shared<MapArgs>();
   CLI::App* cmd = root.add_subcommand("map", "SLAM from scratch: trajectory, map, timing");
-  cmd->add_option("--log", args->log, "ROS1 bag or scan folder")->required();
+  cmd->add_option("--log", args->log, "the log: a ROS1 bag, a ROS 2 recording (rosbag2 directory or .mcap) or a scan folder")->required();
   cmd->add_option("--config", args->config, "run configuration (YAML)")->required();
   cmd->add_option("--out", args->out, "output directory")->required();
   cmd->add_option("--json", args->json, "also write the summary to this JSON file");

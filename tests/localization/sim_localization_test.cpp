@@ -114,6 +114,34 @@ bool HasEvent(const odometry::OdometryPipeline& pipeline, LocalizationEvent::Kin
   return false;
 }
 
+// One line per event, for a failure's message.
+std::string EventList(const odometry::OdometryPipeline& pipeline) {
+  std::string events;
+  for (const LocalizationEvent& e : pipeline.events()) {
+    events += std::string("\n  ") + ToString(e.kind) + ": " + e.message;
+  }
+  return events;
+}
+
+// The largest distance between the sink's map-frame poses from `from_t_ns` on and the truth
+// carried into the prior's frame (no alignment); `compared` counts the poses.
+double WorstPositionError(const LocalizationSink& sink, int64_t from_t_ns,
+                          std::size_t* compared) {
+  const Eigen::Isometry3d T_map_site = SharedPrior().T_site_map.inverse();
+  double worst_m = 0.0;
+  *compared = 0;
+  for (const odometry::ScanResult& r : sink.results()) {
+    if (r.t_ns < from_t_ns) continue;
+    Eigen::Isometry3d T_site_imu;
+    if (!evaluation::InterpolatePose(sink.truth, r.t_ns, &T_site_imu)) continue;
+    const Eigen::Vector3d error = Eigen::Isometry3d(r.state.T_map_imu().Matrix()).translation() -
+                                  (T_map_site * T_site_imu).translation();
+    worst_m = std::max(worst_m, error.norm());
+    ++*compared;
+  }
+  return worst_m;
+}
+
 class SimLocalization : public ::testing::TestWithParam<Estimator::Backend> {};
 
 void PrintTableRow(const char* mode, Estimator::Backend backend, const LocalizationRun& run) {
@@ -355,7 +383,6 @@ TEST(SimRelocalization, AKidnappedVehicleIsFoundAgainOverTheWholeMap) {
   ASSERT_NE(pipeline.status(), odometry::OdometryPipeline::Status::kFailed) << pipeline.message();
 
   // The jump, in the prior's frame: how far the vehicle was moved.
-  const Eigen::Isometry3d T_map_site = SharedPrior().T_site_map.inverse();
   Eigen::Isometry3d before_cut, after_cut;
   ASSERT_TRUE(evaluation::InterpolatePose(sink.truth, sink.cut_from_ns - 100'000'000, &before_cut));
   ASSERT_TRUE(evaluation::InterpolatePose(sink.truth, sink.cut_from_ns + 100'000'000, &after_cut));
@@ -369,10 +396,7 @@ TEST(SimRelocalization, AKidnappedVehicleIsFoundAgainOverTheWholeMap) {
       break;
     }
   }
-  std::string events;
-  for (const LocalizationEvent& e : pipeline.events()) {
-    events += std::string("\n  ") + ToString(e.kind) + ": " + e.message;
-  }
+  const std::string events = EventList(pipeline);
   ASSERT_TRUE(HasEvent(pipeline, LocalizationEvent::Kind::kLost)) << events;
   ASSERT_NE(relocalized, nullptr) << "never found again" << events;
   EXPECT_NE(relocalized->message.find("global localization accepted"), std::string::npos)
@@ -382,17 +406,9 @@ TEST(SimRelocalization, AKidnappedVehicleIsFoundAgainOverTheWholeMap) {
   EXPECT_LE(recovery_s, 5.0);
 
   // From a second after the recovery on, the live poses are the truth's (no alignment).
-  double worst_m = 0.0;
   std::size_t compared = 0;
-  for (const odometry::ScanResult& r : sink.results()) {
-    if (r.t_ns < relocalized->t_ns + 1'000'000'000) continue;
-    Eigen::Isometry3d T_site_imu;
-    if (!evaluation::InterpolatePose(sink.truth, r.t_ns, &T_site_imu)) continue;
-    const Eigen::Vector3d error = Eigen::Isometry3d(r.state.T_map_imu().Matrix()).translation() -
-                                  (T_map_site * T_site_imu).translation();
-    worst_m = std::max(worst_m, error.norm());
-    ++compared;
-  }
+  const double worst_m =
+      WorstPositionError(sink, relocalized->t_ns + 1'000'000'000, &compared);
   EXPECT_GT(compared, 50u);
   EXPECT_LT(worst_m, 0.1);
 }
@@ -436,10 +452,7 @@ TEST(SimLocalizationMovingStart, ALogThatStartsWhileDrivingIsPlacedInTheMapWhile
   sim::SessionSimulator(options, SharedSite(), sim::SessionId::kB).Run(&sink);
   sink.Finish();
   const auto& pipeline = sink.pipeline;
-  std::string events;
-  for (const LocalizationEvent& e : pipeline.events()) {
-    events += std::string("\n  ") + ToString(e.kind) + ": " + e.message;
-  }
+  const std::string events = EventList(pipeline);
   ASSERT_NE(pipeline.status(), odometry::OdometryPipeline::Status::kFailed)
       << pipeline.message() << events;
   const LocalizationEvent* start = nullptr;
@@ -453,17 +466,8 @@ TEST(SimLocalizationMovingStart, ALogThatStartsWhileDrivingIsPlacedInTheMapWhile
   ASSERT_FALSE(sink.results().empty());
   EXPECT_GE(sink.results().front().t_ns, start->t_ns);
   EXPECT_LT(sink.results().size(), sink.all_results().size()) << "the search's scans are provisional";
-  const Eigen::Isometry3d T_map_site = SharedPrior().T_site_map.inverse();
-  double worst_m = 0.0;
   std::size_t compared = 0;
-  for (const odometry::ScanResult& r : sink.results()) {
-    Eigen::Isometry3d T_site_imu;
-    if (!evaluation::InterpolatePose(sink.truth, r.t_ns, &T_site_imu)) continue;
-    const Eigen::Vector3d error = Eigen::Isometry3d(r.state.T_map_imu().Matrix()).translation() -
-                                  (T_map_site * T_site_imu).translation();
-    worst_m = std::max(worst_m, error.norm());
-    ++compared;
-  }
+  const double worst_m = WorstPositionError(sink, start->t_ns, &compared);
   EXPECT_GT(compared, 20u);
   EXPECT_LT(worst_m, 0.3) << events;
 }

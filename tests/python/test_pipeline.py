@@ -41,7 +41,7 @@ def test_the_same_measurements_give_the_commands_trajectory(messages, cli_map, a
     assert np.abs(result.live_trajectory - tum(cli_map / "trajectory_live.tum")).max() <= 1e-9
     assert result.summary["scans_processed"] == len(expected)
     state = pipeline.state
-    assert state.valid and state.status == "running"
+    assert state.valid and state.status == "running" and state.pose_status == "valid"
     np.testing.assert_allclose(state.pose, result.poses()[-1], atol=1e-9)  # the filter: live = final
     assert state.covariance.shape == (6, 6) and np.allclose(state.covariance, state.covariance.T)
     assert np.all(np.linalg.eigvalsh(state.covariance) > 0)

@@ -19,13 +19,14 @@ class State:
     map). Before the first pose, valid is False and the arrays are None.
 
     status:           initializing | running | lost | failed
-    valid:            a pose is known and the pipeline is running
+    valid:            a pose placed in the map is known and the pipeline is running
     t_s, t_ns:        the scan's end, s and ns
     pose:             4x4 T_world_imu
     velocity:         (3,) of the IMU in the world frame, m/s
     angular_velocity: (3,) in the IMU frame, rad/s
     covariance:       6x6 pose covariance, order [dp (world, m); dtheta (IMU frame, rad)]
     health_good:      the scan fitted the map (the supervisor's health test)
+    pose_status:      valid | lost | provisional (a search's frame, not yet the map's)
     """
 
     status: str
@@ -37,6 +38,7 @@ class State:
     angular_velocity: Optional[np.ndarray] = None
     covariance: Optional[np.ndarray] = None
     health_good: bool = False
+    pose_status: Optional[str] = None
 
     @property
     def position(self):

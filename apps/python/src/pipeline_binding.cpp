@@ -27,6 +27,7 @@ struct LiveState {
   estimation::PoseCovariance6 covariance = estimation::PoseCovariance6::Zero();
   Eigen::Vector3d angular_velocity_imu = Eigen::Vector3d::Zero();
   bool health_good = false;
+  odometry::PoseStatus pose_status = odometry::PoseStatus::kValid;
 };
 
 const char* StatusName(odometry::OdometryPipeline::Status status) {
@@ -51,7 +52,7 @@ class PipelineHandle {
       : config_(config.config), session_(config_.PipelineOptions(), Keeps(keep_history)) {
     session_.OnResult([this](const odometry::ScanResult& r) {
       live_ = LiveState{r.t_ns, r.state, r.pose_covariance, r.angular_velocity_imu,
-                        r.health.good};
+                        r.health.good, r.pose_status};
     });
     if (prior_map.is_none()) {
       if (!guess.is_none()) throw std::invalid_argument("guess: needs a prior_map");
@@ -121,8 +122,12 @@ class PipelineHandle {
     }
     py::dict out;
     out["status"] = status;
-    out["valid"] = live.has_value() && status == "running";
+    // Only a pose placed in the map is valid: not a lost vehicle's, nor one of a search's
+    // provisional frame (pose_status says which).
+    out["valid"] = live.has_value() && status == "running" &&
+                   live->pose_status == odometry::PoseStatus::kValid;
     if (!live) return out;
+    out["pose_status"] = odometry::ToString(live->pose_status);
     Eigen::Isometry3d T_world_imu = lie::ToIsometry(live->state.T_map_imu());
     T_world_imu.translation() += origin;
     out["t_ns"] = live->t_ns;

@@ -13,7 +13,7 @@
 //    user request) start a relocalization: the initializer runs around the current pose.
 //    Each event is recorded for the run's summary;
 //  - global start: without a guess, or when the guess is rejected, the global localizer
-//    (registration/global_localizer.h) searches the whole prior map for the static scans and
+//    (global_localizer.h) searches the whole prior map for the static scans and
 //    its verdict (accepted, ambiguous, not found) is the start's.
 
 #include <Eigen/Geometry>

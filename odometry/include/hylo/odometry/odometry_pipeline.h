@@ -76,7 +76,7 @@ struct OdometryPipelineOptions {
 class OdometryPipeline {
  public:
   /// kInitializing: IMU at rest / ICP initializer / searching while moving (no pose in the
-  /// map yet: no results); kRunning; kLost: running, but health was bad for lost_after_scans
+  /// map yet: a search's results are provisional, see ScanResult::pose_status); kRunning; kLost: running, but health was bad for lost_after_scans
   /// scans and a relocalization is pending; kFailed: see message().
   enum class Status { kInitializing, kRunning, kLost, kFailed };
 

@@ -5,10 +5,14 @@
 //
 // Files written into out_dir:
 //   config.yaml      the effective configuration
-//   trajectory.tum   T_world_imu per processed scan, stamped at scan end (TUM): the finalized
-//                    states (the smoother's estimate of each scan once it left the window)
+//   trajectory.tum   T_world_imu per scan placed in the map, stamped at scan end (TUM): the
+//                    finalized states (the smoother's estimate of each scan once it left the
+//                    window)
 //   trajectory_live.tum  the same scans' live states, as the odometry stream had them
-//   odometry.csv     per scan: pose, body twist, 6×6 pose and twist covariances, health
+//   trajectory_provisional.tum  the scans that were not a place in the map (a search's
+//                    provisional frame, a lost vehicle), only when there were some
+//   odometry.csv     per scan: pose, body twist, 6×6 pose and twist covariances, health,
+//                    pose_status
 //                    (column order documented in the file's header line)
 //   timing.csv       per-scan timing and update figures
 //   map.pcd          the final map (prior + added points, or the SLAM map), world frame

@@ -1,8 +1,7 @@
 #pragma once
 // Points of interest on the fixed site's equipment, where an inspection robot would point
-// its cameras: what `hylo demo`'s inspection step, the inspection tests and benchmark plan
-// for. Taken from the site's own primitives, so each lies exactly on (or around) the
-// simulated equipment:
+// its cameras: what the inspection tests and benchmark plan for. Taken from the site's own
+// primitives, so each lies exactly on (or around) the simulated equipment:
 //   insulator_column  the fitting on top of the porcelain (a point);
 //   transformer       the tank (a box) and each bushing's top (points);
 //   pole              the top (a point);

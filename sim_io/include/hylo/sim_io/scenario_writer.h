@@ -6,7 +6,7 @@
 //   session_<a|b>_truth.tum   T_map_imu at every IMU stamp
 //   session_<a|b>.json        manifest: the scenario's every drawn figure and the counts
 //   sensor_sheet.yaml         what a user knows (SensorSheet)
-//   config.yaml               config/<preset>.yaml with the sheet's values (ScenarioRunConfig)
+//   config.yaml               config/presets/<preset>.yaml with the sheet's values (ScenarioRunConfig)
 // The same scenario number gives the same bytes.
 
 #include <functional>
