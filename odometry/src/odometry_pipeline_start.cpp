@@ -14,6 +14,7 @@ namespace hylo::odometry {
 
 void OdometryPipeline::SetPriorMap(const PointCloud& points_map) {
   HYLO_CHECK(status_ == Status::kInitializing && counters_.scans_processed == 0);
+  HYLO_CHECK(!supervisor_, "the prior map is set before the initial guess");
   map_.SetPrior(points_map);
   global_search_ = std::make_unique<localization::GlobalSearch>(options_.localization, points_map);
 }
@@ -23,12 +24,14 @@ void OdometryPipeline::SetTiledPriorMap(std::shared_ptr<mapping::TileStreamer> s
                                         std::size_t cache_max_points) {
   HYLO_CHECK(status_ == Status::kInitializing && counters_.scans_processed == 0);
   map_.SetTiledPrior(std::move(streamer), cache_max_points);
+  HYLO_CHECK(!supervisor_, "the prior map is set before the initial guess");
   global_search_ = std::make_unique<localization::GlobalSearch>(
       options_.localization, overview_points, "the tiled map has no overview to search");
 }
 
 void OdometryPipeline::SetInitialGuess(const std::optional<Eigen::Isometry3d>& T_map_imu_guess) {
   HYLO_CHECK(status_ == Status::kInitializing);
+  supervisor_.reset();  // waits for a global attempt of the one it replaces
   if (!global_search_) {
     global_search_ = std::make_unique<localization::GlobalSearch>(
         options_.localization, PointCloud(), "no prior map was given (SetPriorMap)");

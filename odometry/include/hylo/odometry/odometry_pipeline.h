@@ -91,8 +91,9 @@ class OdometryPipeline {
   /// Localization: the prior map (map frame, downsampled by the caller, e.g. BuildPriorMap;
   /// its global-localization raster is built here) and the guess of T_map_imu at the start
   /// (with an IMU only its yaw and position are used: roll and pitch come from gravity), or
-  /// std::nullopt to search the whole map. Both before the first scan; then odometry starts
-  /// only from a pose the ICP initializer accepted, or the pipeline fails with the reason.
+  /// std::nullopt to search the whole map. Both before the first scan, the map first; then
+  /// odometry starts only from a pose the ICP initializer accepted, or the pipeline fails with
+  /// the reason.
   void SetPriorMap(const PointCloud& points_map);
   /// Localization in a tiled prior instead (mapping/tiles.h; the map frame is the tiles' local
   /// frame): `streamer` keeps the tiles around the vehicle, each scan posts the position to it
@@ -158,8 +159,10 @@ class OdometryPipeline {
   std::unique_ptr<estimation::Estimator> estimator_;
   mapping::MapManager map_;
   registration::PlaneMatcher matcher_;
-  std::unique_ptr<localization::LocalizationSupervisor> supervisor_;   // null in SLAM
   std::unique_ptr<localization::GlobalSearch> global_search_;  // with a prior map
+  // Declared after the map and the global search it reads: destroyed first, it waits for a
+  // global attempt still running on its worker thread before they go.
+  std::unique_ptr<localization::LocalizationSupervisor> supervisor_;   // null in SLAM
   TwistEstimator twist_;
   Status status_ = Status::kInitializing;  // kLost is the supervisor's
   std::string message_;
