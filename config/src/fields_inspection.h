@@ -19,8 +19,7 @@ void VisitFields(V& v, inspection::OccupancyOptions& o) {
 template <class V>
 void VisitFields(V& v, inspection::VisibilityOptions& o) {
   v("camera_height_m", o.camera_height_m, "camera above the ground of the robot's cell, m");
-  v("min_range_m", o.min_range_m,
-    "camera-to-target range, least, m (a target may set its own)");
+  v("min_range_m", o.min_range_m, "camera-to-target range, least, m (a target may set its own)");
   v("max_range_m", o.max_range_m, "camera-to-target range, most, m (a target may set its own)");
   v("target_radius_m", o.target_radius_m,
     "a point target's own surroundings (the part it is on), where sight lines may end, m");

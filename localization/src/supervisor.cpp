@@ -38,8 +38,7 @@ bool ImuAtRest(const std::vector<ImuSample>& imu, const estimation::NavState& im
 
 LocalizationSupervisor::LocalizationSupervisor(
     const LocalizationOptions& options, const estimation::InitialUncertainty& uncertainty,
-    const std::optional<Eigen::Isometry3d>& T_map_imu_guess,
-    const GlobalSearch* global_search,
+    const std::optional<Eigen::Isometry3d>& T_map_imu_guess, const GlobalSearch* global_search,
     const mapping::MapManagerOptions& search_map,
     const registration::PlaneMatcherOptions& search_planes)
     : options_(options),
@@ -68,15 +67,14 @@ void LocalizationSupervisor::AddStaticScan(const PointCloud& points_imu, int64_t
 }
 
 bool LocalizationSupervisor::Start(estimation::NavState start, bool gravity_known,
-                                   const registration::NeighborSearch& map, estimation::Estimator* estimator,
-                                   std::string* why) {
+                                   const registration::NeighborSearch& map,
+                                   estimation::Estimator* estimator, std::string* why) {
   std::optional<Eigen::Isometry3d> guess = guess_;
   if (gravity_known) {
     // Roll and pitch from gravity, yaw and position from the user's guess.
     const Eigen::Vector3d up_imu = start.R_map_imu.Matrix().transpose() * Eigen::Vector3d::UnitZ();
     if (guess) {
-      guess =
-          GuessFromGravity(guess->translation(), YawOf(guess->rotation()), up_imu);
+      guess = GuessFromGravity(guess->translation(), YawOf(guess->rotation()), up_imu);
     }
     start.t_ns = static_.imu_end_t_ns;
   }
@@ -121,17 +119,16 @@ bool LocalizationSupervisor::Start(estimation::NavState start, bool gravity_know
   return true;
 }
 
-std::string LocalizationSupervisor::StartGlobally(const estimation::NavState& start, bool gravity_known,
+std::string LocalizationSupervisor::StartGlobally(const estimation::NavState& start,
+                                                  bool gravity_known,
                                                   const registration::NeighborSearch& map,
                                                   IcpInitializerResult* icp) const {
   if (!global_->available()) return "unavailable: " + global_->why_unavailable();
   // With an IMU at rest, gravity levels the scans; without one a ground vehicle is taken to
   // start near level (the refinement then corrects a few degrees of tilt).
-  const Eigen::Matrix3d R_level = gravity_known
-                                      ? LevellingRotation(start.R_map_imu.Matrix())
-                                      : Eigen::Matrix3d::Identity();
-  const GlobalLocalizationResult r =
-      global_->Localize(static_.points_imu, R_level, map);
+  const Eigen::Matrix3d R_level =
+      gravity_known ? LevellingRotation(start.R_map_imu.Matrix()) : Eigen::Matrix3d::Identity();
+  const GlobalLocalizationResult r = global_->Localize(static_.points_imu, R_level, map);
   if (r.status == GlobalStatus::kAccepted) *icp = r.refinement;
   std::ostringstream os;
   os << r.message << " (" << r.stats.nodes_scored << " search nodes, " << r.elapsed_s << " s CPU)";
@@ -216,8 +213,7 @@ bool LocalizationSupervisor::Relocalize(const PointCloud& sweep_imu,
                                         estimation::Estimator* estimator) {
   const estimation::NavState before = estimator->state();
   ++scans_initializer_;
-  IcpInitializerResult icp =
-      sweep_initializer_.Initialize(sweep_imu, map, T_map_imu_guess);
+  IcpInitializerResult icp = sweep_initializer_.Initialize(sweep_imu, map, T_map_imu_guess);
   std::string verdict = icp.message;
   if (!icp.accepted && allow_global && global_->available()) {
     // Not near the last pose (kidnapped, or lost for long): search the whole map, levelled

@@ -4,8 +4,8 @@
 #include <sstream>
 #include <utility>
 
-#include "hylo/localization/supervisor.h"
 #include "hylo/lie/isometry.h"
+#include "hylo/localization/supervisor.h"
 
 namespace hylo::localization {
 
@@ -40,9 +40,9 @@ bool LocalizationSupervisor::StartMoving(const estimation::NavState& x,
   return true;
 }
 
-void LocalizationSupervisor::BeginSearch(const estimation::NavState& x, const PointCloud& points_imu,
-                                         bool is_start, int first_attempt_scans,
-                                         const std::string& reason) {
+void LocalizationSupervisor::BeginSearch(const estimation::NavState& x,
+                                         const PointCloud& points_imu, bool is_start,
+                                         int first_attempt_scans, const std::string& reason) {
   search_ = std::make_unique<MovingSearch>(options_.search, search_map_, search_planes_,
                                            options_.global.max_range_m, options_.init_scans);
   search_->Begin(points_imu, lie::ToIsometry(x.T_map_imu()));
@@ -147,8 +147,8 @@ bool LocalizationSupervisor::Conclude(const SearchAttempt& attempt,
   return true;
 }
 
-void LocalizationSupervisor::EndSearch(const Eigen::Isometry3d& T_map_imu, estimation::Estimator* estimator,
-                                       const std::string& verdict,
+void LocalizationSupervisor::EndSearch(const Eigen::Isometry3d& T_map_imu,
+                                       estimation::Estimator* estimator, const std::string& verdict,
                                        const IcpInitializerResult& icp) {
   estimation::NavState x = estimator->state();
   // The search frame placed in the map: every search-frame quantity moves with it.

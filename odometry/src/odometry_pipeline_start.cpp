@@ -93,8 +93,8 @@ bool OdometryPipeline::Start(const MeasurementGroup& group) {
   // Localization: static scans feed the ICP start; a scan in which the vehicle moves ends the
   // accumulation and is processed from the accepted pose.
   const bool imu_ready = imu_initializer_.status() == estimation::ImuInitializer::Status::kDone;
-  if (!imu_ready ||
-      localization::ImuAtRest(group.imu, imu_initializer_.state(), options_.init, options_.imu.gravity_mps2)) {
+  if (!imu_ready || localization::ImuAtRest(group.imu, imu_initializer_.state(), options_.init,
+                                            options_.imu.gravity_mps2)) {
     AddStaticScan(group);
   } else if (imu_was_ready) {
     StartLocalization(group);
@@ -128,7 +128,8 @@ std::size_t OdometryPipeline::FeedImuInitializer(const MeasurementGroup& group) 
   return used;
 }
 
-void OdometryPipeline::StartSlam(const estimation::NavState& start, const std::vector<ImuSample>& imu_after) {
+void OdometryPipeline::StartSlam(const estimation::NavState& start,
+                                 const std::vector<ImuSample>& imu_after) {
   estimation::NavState x = start;
   x.T_imu_lidar = options_.T_imu_lidar;
   estimator_->Initialize(x, options_.initial_uncertainty.SlamCovariance());

@@ -22,13 +22,13 @@ namespace hylo::localization {
 /// One attempt and where the search frame had the vehicle when its cloud was taken.
 struct SearchAttempt {
   GlobalLocalizationResult result;
-  bool from_recent = false;  ///< the result is the recent scans' (the accumulated cloud's failed)
+  bool from_recent = false;  ///< placed by the last scans alone
   Eigen::Isometry3d T_search_imu = Eigen::Isometry3d::Identity();  ///< at the attempt's scan
-  int64_t t_ns = 0;          ///< that scan's time, ns
-  std::size_t points = 0;    ///< of the attempt's cloud
-  double distance_m = 0.0;   ///< the search's travel by then, m
-  int scans = 0;             ///< the search's scans by then
-  int attempt = 0;           ///< 1, 2, ... within the search
+  int64_t t_ns = 0;                                                ///< that scan's time, ns
+  std::size_t points = 0;                                          ///< of the attempt's cloud
+  double distance_m = 0.0;  ///< the search's travel by then, m
+  int scans = 0;            ///< the search's scans by then
+  int attempt = 0;          ///< 1, 2, ... within the search
 };
 
 class BackgroundSearch {
