@@ -21,29 +21,38 @@ void LowerThisThreadsPriority() {
 
 }  // namespace
 
+SearchAttempt BackgroundSearch::Run(const PointCloud& cloud_imu, const PointCloud& recent_imu,
+                                    const Eigen::Matrix3d& R_level_imu,
+                                    SearchAttempt attempt) const {
+  attempt.points = cloud_imu.size();
+  attempt.result = search_.Localize(cloud_imu, R_level_imu, map_);
+  if (attempt.result.status == GlobalStatus::kAccepted || recent_imu.empty()) return attempt;
+  GlobalLocalizationResult recent = search_.Localize(recent_imu, R_level_imu, map_);
+  if (recent.status == GlobalStatus::kAccepted) {
+    recent.elapsed_s += attempt.result.elapsed_s;
+    attempt.result = std::move(recent);
+    attempt.from_recent = true;
+    attempt.points = recent_imu.size();
+  } else {
+    attempt.result.message += "; last scans alone: " + recent.message;
+    attempt.result.elapsed_s += recent.elapsed_s;
+  }
+  return attempt;
+}
+
 bool BackgroundSearch::Start(PointCloud cloud_imu, PointCloud recent_imu,
                              const Eigen::Matrix3d& R_level_imu, SearchAttempt attempt) {
-  if (Busy()) return false;
-  attempt.points = cloud_imu.size();
-  running_ = std::async(
-      std::launch::async, [this, cloud = std::move(cloud_imu), recent = std::move(recent_imu),
-                           R_level_imu, attempt = std::move(attempt)]() mutable {
-        LowerThisThreadsPriority();
-        attempt.result = search_.Localize(cloud, R_level_imu, map_);
-        if (attempt.result.status != GlobalStatus::kAccepted && !recent.empty()) {
-          GlobalLocalizationResult r = search_.Localize(recent, R_level_imu, map_);
-          if (r.status == GlobalStatus::kAccepted) {
-            r.elapsed_s += attempt.result.elapsed_s;
-            attempt.result = std::move(r);
-            attempt.from_recent = true;
-            attempt.points = recent.size();
-          } else {
-            attempt.result.message += "; last scans alone: " + r.message;
-            attempt.result.elapsed_s += r.elapsed_s;
-          }
-        }
-        return attempt;
-      });
+  if (Busy() || finished_) return false;
+  if (!on_worker_) {
+    finished_ = Run(cloud_imu, recent_imu, R_level_imu, std::move(attempt));
+    return true;
+  }
+  running_ = std::async(std::launch::async,
+                        [this, cloud = std::move(cloud_imu), recent = std::move(recent_imu),
+                         R_level_imu, attempt = std::move(attempt)]() {
+                          LowerThisThreadsPriority();
+                          return Run(cloud, recent, R_level_imu, attempt);
+                        });
   return true;
 }
 
@@ -53,6 +62,11 @@ bool BackgroundSearch::Busy() const {
 }
 
 std::optional<SearchAttempt> BackgroundSearch::TakeFinished() {
+  if (finished_) {
+    std::optional<SearchAttempt> done = std::move(finished_);
+    finished_.reset();
+    return done;
+  }
   if (!running_.valid() || Busy()) return std::nullopt;
   return running_.get();
 }

@@ -48,8 +48,7 @@ LocalizationSupervisor::LocalizationSupervisor(
       global_(global_search),
       guess_(T_map_imu_guess),
       search_map_(search_map),
-      search_planes_(search_planes),
-      background_in_use_(options.search.background) {}
+      search_planes_(search_planes) {}
 
 void LocalizationSupervisor::RequestRelocalization(const Eigen::Isometry3d& T_map_imu_guess) {
   if (!started_ && !searching()) {

@@ -62,7 +62,9 @@ LocalizationSupervisor::SearchStep LocalizationSupervisor::Search(
   const Eigen::Isometry3d T_search_imu = lie::ToIsometry(x.T_map_imu());
   const bool due =
       search_->Add(sweep_imu, map_points_search, T_search_imu, search_first_attempt_scans_);
-  if (!background_) background_ = std::make_unique<BackgroundSearch>(*global_, map);
+  if (!background_) {
+    background_ = std::make_unique<BackgroundSearch>(*global_, map, options_.search.background);
+  }
   if (std::optional<SearchAttempt> done = background_->TakeFinished()) {
     if (Conclude(*done, map, estimator)) return SearchStep::kLocalized;
   }
@@ -91,11 +93,9 @@ LocalizationSupervisor::SearchStep LocalizationSupervisor::Search(
       attempt.scans = search_->scans();
       background_->Start(std::move(cloud_imu), search_->RecentInImu(T_search_imu),
                          LevellingRotation(T_search_imu.linear()), attempt);
-      if (!background_in_use_) {
-        background_->Wait();
-        if (Conclude(*background_->TakeFinished(), map, estimator)) {
-          return SearchStep::kLocalized;
-        }
+      // On the scan thread the attempt has finished: its verdict is applied at once.
+      if (std::optional<SearchAttempt> done = background_->TakeFinished()) {
+        if (Conclude(*done, map, estimator)) return SearchStep::kLocalized;
       }
     }
   }

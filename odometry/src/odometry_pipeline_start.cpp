@@ -23,8 +23,8 @@ void OdometryPipeline::SetTiledPriorMap(std::shared_ptr<mapping::TileStreamer> s
                                         const PointCloud& overview_points,
                                         std::size_t cache_max_points) {
   HYLO_CHECK(status_ == Status::kInitializing && counters_.scans_processed == 0);
-  map_.SetTiledPrior(std::move(streamer), cache_max_points);
   HYLO_CHECK(!supervisor_, "the prior map is set before the initial guess");
+  map_.SetTiledPrior(std::move(streamer), cache_max_points);
   global_search_ = std::make_unique<localization::GlobalSearch>(
       options_.localization, overview_points, "the tiled map has no overview to search");
 }

@@ -1,13 +1,16 @@
 #pragma once
-// A global localization attempt off the scan thread. A search while moving accumulates scans
-// for seconds before it places them in the map, and one attempt costs a second or more of
-// CPU: run on the scan thread it stalls tracking in the provisional frame (a live vehicle's
-// scans queue up and are dropped). Here an attempt runs on a worker thread, at a lower
-// priority than the scan thread, one at a time; the scan thread polls for the verdict and
-// applies it through the odometry it kept meanwhile (see LocalizationSupervisor::Search).
+// A global localization attempt of the search while moving, off the scan thread when asked. A
+// search accumulates scans for seconds before it places them in the map, and one attempt costs
+// a second or more of CPU: run on the scan thread it stalls tracking in the provisional frame
+// (a live vehicle's scans queue up and are dropped). On a worker thread, at a lower priority
+// than the scan thread, one at a time, the scan thread polls for the verdict and applies it
+// through the odometry it kept meanwhile (see LocalizationSupervisor::Search). A log read from
+// a file runs its attempts on the caller's thread instead: the same result on every run,
+// whatever the machine's load.
 //
 // The map the attempt reads must not change while it runs: the caller keeps it read-only
-// (a searching pipeline adds nothing to its map) and waits for the attempt before it does.
+// (a searching pipeline adds nothing to its map) and destroys this object, which waits for the
+// attempt, before it changes the map.
 
 #include <Eigen/Geometry>
 #include <future>
@@ -33,9 +36,11 @@ struct SearchAttempt {
 
 class BackgroundSearch {
  public:
-  /// `search` and `map` must outlive this object.
-  BackgroundSearch(const GlobalSearch& search, const registration::NeighborSearch& map)
-      : search_(search), map_(map) {}
+  /// `search` and `map` must outlive this object. `on_worker`: attempts run on a worker
+  /// thread; false: on the caller's, each finished when Start returns.
+  BackgroundSearch(const GlobalSearch& search, const registration::NeighborSearch& map,
+                   bool on_worker)
+      : search_(search), map_(map), on_worker_(on_worker) {}
   /// Waits for an attempt still running.
   ~BackgroundSearch() { Wait(); }
   BackgroundSearch(const BackgroundSearch&) = delete;
@@ -45,20 +50,25 @@ class BackgroundSearch {
   /// `R_level_imu`; `attempt` carries its bookkeeping. When that cloud places nothing,
   /// `recent_imu` (the last scans alone, same frame) is tried: the accumulated cloud is the
   /// more telling one while the provisional odometry holds, the recent scans carry little of
-  /// its drift when it does not. False when an attempt is still running.
+  /// its drift when it does not. False while an attempt runs or its verdict is not taken.
   bool Start(PointCloud cloud_imu, PointCloud recent_imu, const Eigen::Matrix3d& R_level_imu,
              SearchAttempt attempt);
   /// True while an attempt runs.
   bool Busy() const;
   /// The finished attempt, once; nothing while it runs or when none was started.
   std::optional<SearchAttempt> TakeFinished();
-  /// Blocks until an attempt in flight has finished (its verdict stays to be taken).
-  void Wait();
 
  private:
+  // The attempt: the accumulated cloud, then the recent scans when it places nothing.
+  SearchAttempt Run(const PointCloud& cloud_imu, const PointCloud& recent_imu,
+                    const Eigen::Matrix3d& R_level_imu, SearchAttempt attempt) const;
+  void Wait();
+
   const GlobalSearch& search_;
   const registration::NeighborSearch& map_;
-  std::future<SearchAttempt> running_;
+  const bool on_worker_;
+  std::future<SearchAttempt> running_;     // on the worker
+  std::optional<SearchAttempt> finished_;  // on the caller's thread
 };
 
 }  // namespace hylo::localization

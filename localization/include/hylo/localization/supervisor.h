@@ -171,7 +171,6 @@ class LocalizationSupervisor {
   registration::PlaneMatcherOptions search_planes_;
   std::unique_ptr<MovingSearch> search_;  // non-null while searching
   std::unique_ptr<BackgroundSearch> background_;  // the search's global attempts
-  bool background_in_use_ = false;  // attempts run off the scan thread (search.background)
   std::string last_attempt_;        // the last attempt's verdict, for a search that gives up
   bool search_is_start_ = false;          // the search began at the start (not on request)
   int search_first_attempt_scans_ = 0;    // see BeginSearch
