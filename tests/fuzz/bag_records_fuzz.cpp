@@ -13,6 +13,7 @@
 #include "bag_records.h"
 #include "bag_recovered_reader.h"
 #include "fuzz_support.h"
+#include "log_reader_fuzz.h"
 #include "hylo/logs/log_reader.h"
 
 namespace {
@@ -51,20 +52,7 @@ void WalkRecords(const std::string& path) {
 void ReadMessages(const std::string& path) {
   logs::LogReadOptions options;  // /points and /imu, the convention detected
   auto reader = detail::OpenRecoveredBag(path, options, "fuzzed");
-  logs::LogMessage m;
-  while (reader->Next(&m)) {
-    if (m.kind == logs::LogMessage::Kind::kImu) {
-      Require(m.imu.accel_imu.allFinite() && m.imu.gyro_imu.allFinite(),
-              "a non-finite IMU sample was delivered");
-      continue;
-    }
-    Require(m.scan.t_ns <= m.scan.end_t_ns, "scan ends before it starts");
-    for (const hylo::ScanPoint& p : m.scan.points) {
-      Require(p.position_lidar.allFinite(), "a non-finite point was kept");
-      Require(p.offset_ns >= 0 && p.offset_ns <= m.scan.end_t_ns - m.scan.t_ns,
-              "a point's time offset lies outside [t_ns, end_t_ns]");
-    }
-  }
+  hylo::fuzz::CheckLogMessages(*reader);
   const logs::LogRecovery* recovery = reader->recovery();
   Require(recovery != nullptr, "the record-by-record reader reports no recovery");
   Require(recovery->unreadable_bytes <= recovery->file_bytes, "more unreadable bytes than bytes");

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "fuzz_support.h"
+#include "log_reader_fuzz.h"
 #include "hylo/logs/rosbag2_reader.h"
 #include "mcap_reader.h"
 #include "storage_source.h"
@@ -82,20 +83,7 @@ void Source(const std::string& path) {
 // What a LogReader promises about the scans and samples it yields.
 void ReadMessages(const std::string& path) {
   auto reader = logs::OpenRosbag2(path, logs::LogReadOptions());
-  logs::LogMessage m;
-  while (reader->Next(&m)) {
-    if (m.kind == logs::LogMessage::Kind::kImu) {
-      Require(m.imu.accel_imu.allFinite() && m.imu.gyro_imu.allFinite(),
-              "a non-finite IMU sample was delivered");
-      continue;
-    }
-    Require(m.scan.t_ns <= m.scan.end_t_ns, "scan ends before it starts");
-    for (const hylo::ScanPoint& p : m.scan.points) {
-      Require(p.position_lidar.allFinite(), "a non-finite point was kept");
-      Require(p.offset_ns >= 0 && p.offset_ns <= m.scan.end_t_ns - m.scan.t_ns,
-              "a point's time offset lies outside [t_ns, end_t_ns]");
-    }
-  }
+  hylo::fuzz::CheckLogMessages(*reader);
   if (const logs::LogRecovery* r = reader->recovery()) {
     Require(r->Summary().find('\n') == std::string::npos, "recovery summary spans lines");
   }
