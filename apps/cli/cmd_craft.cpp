@@ -16,7 +16,7 @@ namespace {
 struct CraftArgs {
   std::string in_path, out_path, json_path;
   std::string tiles;  // also write the crafted map as a tiled map here
-  io::TileMapOptions tile_options;
+  tiles::TileMapOptions tile_options;
   terrain::CraftOptions options;
   bool no_normals = false;
 };

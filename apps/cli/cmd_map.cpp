@@ -18,7 +18,7 @@ namespace {
 struct MapArgs {
   std::string log, config, out, json;
   std::string tiles;  // also write the map as a tiled map here
-  io::TileMapOptions tile_options;
+  tiles::TileMapOptions tile_options;
 };
 
 void RunMap(const MapArgs& args) {

@@ -11,12 +11,12 @@
 #include <map>
 
 #include "commands.h"
-#include "hylo/io/map_tiler.h"
+#include "hylo/tiles/map_tiler.h"
 #include "tile_output.h"
 
 namespace hylo::cli {
 
-void AddTileOptions(CLI::App* cmd, io::TileMapOptions* options, const std::string& prefix) {
+void AddTileOptions(CLI::App* cmd, tiles::TileMapOptions* options, const std::string& prefix) {
   cmd->add_option("--tile-size", options->tile_size_m,
                   "tile edge, m (a whole number of --" + prefix + "voxel)")
       ->capture_default_str();
@@ -27,8 +27,8 @@ void AddTileOptions(CLI::App* cmd, io::TileMapOptions* options, const std::strin
   cmd->add_option("--" + prefix + "overview-voxel", options->overview_voxel_m,
                   "overview for the global localizer (lowest point per voxel), m; 0 = none")
       ->capture_default_str();
-  const std::map<std::string, io::TileFormat> formats = {{"pcd", io::TileFormat::kPcd},
-                                                         {"las", io::TileFormat::kLas}};
+  const std::map<std::string, tiles::TileFormat> formats = {{"pcd", tiles::TileFormat::kPcd},
+                                                         {"las", tiles::TileFormat::kLas}};
   cmd->add_option("--tile-format", options->tile_format,
                   "tile files: pcd (float32, the map's local frame) or las (LAS 1.4 in the world "
                   "frame, 0.1 mm, for survey software)")
@@ -37,11 +37,11 @@ void AddTileOptions(CLI::App* cmd, io::TileMapOptions* options, const std::strin
 }
 
 io::Json WriteTiles(const std::string& in_path, const std::string& out_dir,
-                    const io::TileMapOptions& options) {
+                    const tiles::TileMapOptions& options) {
   std::fprintf(stderr, "tiling %s into %s (%.1f m tiles)\n", in_path.c_str(), out_dir.c_str(),
                options.tile_size_m);
   const auto start = std::chrono::steady_clock::now();
-  const io::TileMapSummary s = io::TileMapFile(in_path, out_dir, options);
+  const tiles::TileMapSummary s = tiles::TileMapFile(in_path, out_dir, options);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   rusage usage{};
@@ -51,7 +51,7 @@ io::Json WriteTiles(const std::string& in_path, const std::string& out_dir,
   j["out"] = out_dir;
   j["tile_size_m"] = options.tile_size_m;
   j["voxel_m"] = options.voxel_m;
-  j["tile_format"] = options.tile_format == io::TileFormat::kLas ? "las" : "pcd";
+  j["tile_format"] = options.tile_format == tiles::TileFormat::kLas ? "las" : "pcd";
   j["points_read"] = s.points_read;
   j["non_finite"] = s.non_finite;
   j["points_written"] = s.points_written;
@@ -80,7 +80,7 @@ namespace {
 
 struct TileArgs {
   std::string in, out, json;
-  io::TileMapOptions options;
+  tiles::TileMapOptions options;
 };
 
 }  // namespace

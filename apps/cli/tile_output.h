@@ -6,17 +6,17 @@
 #include <string>
 
 #include "hylo/io/json.h"
-#include "hylo/io/map_tiler.h"
+#include "hylo/tiles/map_tiler.h"
 
 namespace hylo::cli {
 
 /// --tile-size, --<prefix>voxel, --<prefix>overview-voxel into `options` (commands with a
 /// --voxel of their own use the prefix "tile-").
-void AddTileOptions(CLI::App* cmd, io::TileMapOptions* options, const std::string& prefix);
+void AddTileOptions(CLI::App* cmd, tiles::TileMapOptions* options, const std::string& prefix);
 
 /// Tiles the cloud file `in_path` into `out_dir`; prints and returns the summary (points,
 /// tiles, seconds, points per second, peak memory of the process).
 io::Json WriteTiles(const std::string& in_path, const std::string& out_dir,
-                    const io::TileMapOptions& options);
+                    const tiles::TileMapOptions& options);
 
 }  // namespace hylo::cli

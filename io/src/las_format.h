@@ -86,9 +86,4 @@ LasGrid ChooseLasGrid(const std::string& path, const std::vector<Eigen::Vector3d
 /// The record integers of `p` on `grid` (p must fit, as ChooseLasGrid ensures).
 Eigen::Vector3i LasQuantize(const Eigen::Vector3d& p, const LasGrid& grid);
 
-/// The positions a LAS file written from `positions` reads back as (finite positions; the
-/// grid ChooseLasGrid picks). Throws as ChooseLasGrid.
-std::vector<Eigen::Vector3d> LasQuantizedPositions(const std::string& path,
-                                                   const std::vector<Eigen::Vector3d>& positions);
-
 }  // namespace hylo::io::internal

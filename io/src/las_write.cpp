@@ -153,16 +153,16 @@ Eigen::Vector3i internal::LasQuantize(const Eigen::Vector3d& p, const LasGrid& g
   return record;
 }
 
-std::vector<Eigen::Vector3d> internal::LasQuantizedPositions(
+std::vector<Eigen::Vector3d> LasQuantizedPositions(
     const std::string& path, const std::vector<Eigen::Vector3d>& positions) {
-  const LasGrid grid = ChooseLasGrid(path, positions);
+  const internal::LasGrid grid = internal::ChooseLasGrid(path, positions);
   std::vector<Eigen::Vector3d> out;
   out.reserve(positions.size());
   for (const Eigen::Vector3d& p : positions) {
-    const Eigen::Vector3i r = LasQuantize(p, grid);
-    out.emplace_back(LasCoordinate(r.x(), grid.scale.x(), grid.offset.x()),
-                     LasCoordinate(r.y(), grid.scale.y(), grid.offset.y()),
-                     LasCoordinate(r.z(), grid.scale.z(), grid.offset.z()));
+    const Eigen::Vector3i r = internal::LasQuantize(p, grid);
+    out.emplace_back(internal::LasCoordinate(r.x(), grid.scale.x(), grid.offset.x()),
+                     internal::LasCoordinate(r.y(), grid.scale.y(), grid.offset.y()),
+                     internal::LasCoordinate(r.z(), grid.scale.z(), grid.offset.z()));
   }
   return out;
 }

@@ -31,43 +31,31 @@ MapManager::MapManager(const MapManagerOptions& options) : options_(options) {
 }
 
 void MapManager::SetPrior(const PointCloud& points_map) {
-  streamer_.reset();
-  tiles_.reset();
-  cache_.reset();
+  streamed_.reset();
   prior_ = std::make_unique<IkdTree>();
   prior_->Build(points_map);
 }
 
-void MapManager::SetTiledPrior(std::shared_ptr<TileStreamer> streamer,
-                               std::size_t cache_max_points) {
-  HYLO_CHECK(streamer != nullptr);
+void MapManager::SetStreamedPrior(std::shared_ptr<StreamedPrior> prior) {
+  HYLO_CHECK(prior != nullptr);
   prior_.reset();
-  streamer_ = std::move(streamer);
-  tiles_ = std::make_shared<const TileSet>();
-  cache_ = std::make_unique<TileCache>(streamer_->shared_source(), cache_max_points);
-  streamer_->TakeUpdate(&tiles_);
+  streamed_ = std::move(prior);
 }
 
 void MapManager::BeginScan(const Eigen::Vector3f& position_map) {
-  if (streamer_ == nullptr) return;
-  streamer_->SetPosition(position_map);
-  streamer_->TakeUpdate(&tiles_);
+  if (streamed_ != nullptr) streamed_->Follow(position_map);
 }
 
 void MapManager::SetOnDemand(bool on_demand) {
-  // Tiles read on demand are for the start and a lost vehicle: once tracking again, the
-  // memory goes back to the window.
-  if (on_demand_ && !on_demand && cache_ != nullptr) cache_->Clear();
-  on_demand_ = on_demand;
-  if (streamer_ != nullptr) streamer_->TakeUpdate(&tiles_);
+  if (streamed_ != nullptr) streamed_->SetOnDemand(on_demand);
 }
 
 bool MapManager::OnPriorMap(const Eigen::Vector3f& position_map) const {
-  return streamer_ == nullptr || streamer_->OnMap(position_map);
+  return streamed_ == nullptr || streamed_->OnMap(position_map);
 }
 
 std::string MapManager::prior_error() const {
-  return streamer_ == nullptr ? std::string() : streamer_->error();
+  return streamed_ == nullptr ? std::string() : streamed_->error();
 }
 
 void MapManager::UpdateWindow(const Eigen::Vector3f& sensor) {
@@ -114,10 +102,8 @@ void MapManager::KNearest(const Eigen::Vector3f& query, int k, float max_distanc
                           std::vector<registration::Neighbor>* neighbors) const {
   run_.KNearest(query, k, max_distance, neighbors);
   thread_local std::vector<registration::Neighbor> from_prior;
-  if (on_demand_ && cache_ != nullptr) {
-    cache_->KNearestPreferring(tiles_.get(), query, k, max_distance, &from_prior);
-  } else if (tiles_ != nullptr) {
-    tiles_->KNearest(query, k, max_distance, &from_prior);
+  if (streamed_ != nullptr) {
+    streamed_->KNearest(query, k, max_distance, &from_prior);
   } else if (prior_ != nullptr && prior_->Size() > 0) {
     prior_->KNearest(query, k, max_distance, &from_prior);
   } else {
@@ -133,18 +119,18 @@ void MapManager::KNearest(const Eigen::Vector3f& query, int k, float max_distanc
 }
 
 std::size_t MapManager::prior_size() const {
-  if (tiles_ != nullptr) return tiles_->Size();
+  if (streamed_ != nullptr) return streamed_->HeldSize();
   return prior_ == nullptr ? 0 : prior_->Size();
 }
 
 std::size_t MapManager::Size() const {
-  return run_.Size() + (on_demand_ && cache_ != nullptr ? cache_->Size() : prior_size());
+  return run_.Size() + (streamed_ != nullptr ? streamed_->Size() : prior_size());
 }
 
 PointCloud MapManager::Flatten() const {
-  PointCloud points = tiles_ != nullptr   ? tiles_->Flatten()
-                      : prior_ == nullptr ? PointCloud{}
-                                          : prior_->Flatten();
+  PointCloud points = streamed_ != nullptr ? streamed_->FlattenHeld()
+                      : prior_ == nullptr  ? PointCloud{}
+                                           : prior_->Flatten();
   const PointCloud run = run_.Flatten();
   points.insert(points.end(), run.begin(), run.end());
   return points;
@@ -152,7 +138,7 @@ PointCloud MapManager::Flatten() const {
 
 std::size_t MapManager::MemoryBytes() const {
   return run_.MemoryBytes() + (prior_ == nullptr ? 0 : prior_->MemoryBytes()) +
-         (tiles_ == nullptr ? 0 : tiles_->MemoryBytes());
+         (streamed_ == nullptr ? 0 : streamed_->MemoryBytes());
 }
 
 }  // namespace hylo::mapping

@@ -168,7 +168,7 @@ std::vector<estimation::NavState> OdometryPipeline::TakeFinalizedStates() {
   return states;
 }
 
-bool OdometryPipeline::FollowTiledPrior() {
+bool OdometryPipeline::FollowStreamedPrior() {
   const estimation::NavState& x = estimator_->state();
   const Eigen::Vector3f position = x.p_map_imu.cast<float>();
   map_.BeginScan(position);
@@ -187,7 +187,7 @@ bool OdometryPipeline::FollowTiledPrior() {
 bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) {
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start_ms = CpuMs();
-  if (map_.tiled() && !FollowTiledPrior()) return false;
+  if (map_.streamed() && !FollowStreamedPrior()) return false;
   std::vector<int64_t> knots;
   for (const ImuSample& s : group->imu) {
     estimator_->AddImu(s);

@@ -19,12 +19,11 @@ void OdometryPipeline::SetPriorMap(const PointCloud& points_map) {
   global_search_ = std::make_unique<localization::GlobalSearch>(options_.localization, points_map);
 }
 
-void OdometryPipeline::SetTiledPriorMap(std::shared_ptr<mapping::TileStreamer> streamer,
-                                        const PointCloud& overview_points,
-                                        std::size_t cache_max_points) {
+void OdometryPipeline::SetStreamedPriorMap(std::shared_ptr<mapping::StreamedPrior> prior,
+                                           const PointCloud& overview_points) {
   HYLO_CHECK(status_ == Status::kInitializing && counters_.scans_processed == 0);
   HYLO_CHECK(!supervisor_, "the prior map is set before the initial guess");
-  map_.SetTiledPrior(std::move(streamer), cache_max_points);
+  map_.SetStreamedPrior(std::move(prior));
   global_search_ = std::make_unique<localization::GlobalSearch>(
       options_.localization, overview_points, "the tiled map has no overview to search");
 }
@@ -37,8 +36,8 @@ void OdometryPipeline::SetInitialGuess(const std::optional<Eigen::Isometry3d>& T
         options_.localization, PointCloud(), "no prior map was given (SetPriorMap)");
   }
   localization::LocalizationOptions localization = options_.localization;
-  // A tiled prior's tiles change under the scan thread: its global attempts run there.
-  if (map_.tiled()) localization.search.background = false;
+  // A streamed prior changes under the scan thread: its global attempts run there.
+  if (map_.streamed()) localization.search.background = false;
   supervisor_ = std::make_unique<localization::LocalizationSupervisor>(
       localization, options_.initial_uncertainty, T_map_imu_guess, global_search_.get(),
       options_.map, options_.planes);

@@ -3,8 +3,8 @@
 #include <filesystem>
 
 #include "hylo/io/cloud_io.h"
-#include "hylo/io/tiled_map.h"
 #include "hylo/mapping/ikd_tree.h"
+#include "hylo/tiles/tiled_prior_map.h"
 
 namespace hylo::run {
 
@@ -12,7 +12,7 @@ mapping::PriorMap LoadPriorMap(const std::string& path, const mapping::PriorMapO
                                const std::optional<Eigen::Isometry3d>& T_world_imu_guess,
                                odometry::OdometryPipeline* pipeline) {
   if (std::filesystem::is_directory(path)) {
-    return LoadTiledPriorMap(path, options, T_world_imu_guess, pipeline);
+    return tiles::LoadTiledPriorMap(path, options, T_world_imu_guess, pipeline);
   }
   mapping::PriorMap prior = mapping::BuildPriorMap(io::ReadCloud(path).positions, options, path);
   pipeline->SetPriorMap(prior.points_local);
@@ -26,8 +26,7 @@ std::unique_ptr<registration::NeighborSearch> PriorSearch(
     const mapping::PriorMap& prior, const odometry::OdometryPipeline& pipeline,
     std::size_t cache_points) {
   if (!prior.tiled_dir.empty()) {
-    return std::make_unique<mapping::TileCache>(pipeline.map().streamer()->shared_source(),
-                                                cache_points);
+    return tiles::TiledPriorSearch(pipeline, cache_points);
   }
   auto tree = std::make_unique<mapping::IkdTree>();
   tree->Build(prior.points_local);

@@ -19,6 +19,7 @@
 #include "hylo/registration/voxel_filter.h"
 #include "hylo/run/prior_map_io.h"
 #include "hylo/run/session.h"
+#include "hylo/tiles/tiled_prior_map.h"
 #include "run_outputs.h"
 
 namespace hylo::run {
@@ -90,8 +91,8 @@ std::size_t WriteRunFiles(const RunRequest& request, const Session& session,
   }
   std::size_t tiles_added = 0;
   if (tiled && added) {
-    tiles_added = WriteAddedTiles(dir + "/map_added", prior, pipeline,
-                                  request.config.pipeline.map.voxel_size_m);
+    tiles_added = tiles::WriteAddedTiles(dir + "/map_added", prior, pipeline,
+                                         request.config.pipeline.map.voxel_size_m);
   }
   if (request.config.pipeline.output.dense_map_voxel_m > 0.0) {
     WriteWorldCloud(dir + "/map_dense.pcd", session.dense_map(), origin_world);
@@ -269,7 +270,7 @@ RunResult RunLog(const RunRequest& request) {
     j["prior_map"] = request.prior_map;
     j["prior_map_points"] = prior.num_kept;
     if (tiled) {
-      j["prior_map_tiles"] = TiledPriorJson(pipeline);
+      j["prior_map_tiles"] = tiles::TiledPriorJson(pipeline);
       j["prior_map_tiles"]["added_points_written"] = tiles_added;
     }
     const auto reference =

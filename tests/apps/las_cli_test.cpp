@@ -11,7 +11,7 @@
 
 #include "apps/cli_test_util.h"
 #include "hylo/io/cloud_io.h"
-#include "hylo/io/tiled_map.h"
+#include "hylo/tiles/tiled_map.h"
 #include "test_data.h"
 
 namespace hylo {
@@ -95,11 +95,11 @@ TEST_F(LasCliTest, CraftWritesNormalsAndLasTiles) {
   ASSERT_EQ(crafted.normals.size(), crafted.positions.size());
   EXPECT_GT(crafted.positions.front().y(), 5.4e6);
   EXPECT_NEAR(crafted.normals.front().norm(), 1.f, 1e-3f);
-  const io::TiledMapIndex index = io::ReadTiledMapIndex(Path("crafted_tiles"));
-  io::CheckTiledMapFiles(Path("crafted_tiles"), index);
-  for (const io::TiledMapTile& t : index.tiles) {
+  const tiles::TiledMapIndex index = tiles::ReadTiledMapIndex(Path("crafted_tiles"));
+  tiles::CheckTiledMapFiles(Path("crafted_tiles"), index);
+  for (const tiles::TiledMapTile& t : index.tiles) {
     EXPECT_EQ(fs::path(t.file).extension(), ".las");
-    EXPECT_EQ(io::ReadTiledMapTile(Path("crafted_tiles"), index.origin_world, t).size(), t.points);
+    EXPECT_EQ(tiles::ReadTiledMapTile(Path("crafted_tiles"), index.origin_world, t).size(), t.points);
   }
 }
 
@@ -107,14 +107,14 @@ TEST_F(LasCliTest, TileReadsALasMapAndWritesLasTiles) {
   ASSERT_EQ(Hylo("tile --in " + Path("site.las") + " --out " + Path("tiles") +
                  " --tile-size 20 --voxel 0.25 --tile-format LAS"),
             0);
-  const io::TiledMapIndex index = io::ReadTiledMapIndex(Path("tiles"));
+  const tiles::TiledMapIndex index = tiles::ReadTiledMapIndex(Path("tiles"));
   EXPECT_EQ(index.origin_world, kUtm + Eigen::Vector3d(0.0, 0.0, -10.0));  // 100 m granularity
   EXPECT_EQ(index.tiles.size(), 9u);  // 40 m (and the edge at 40) in 20 m tiles: 3 x 3
   EXPECT_EQ(index.points, 161u * 161u);
-  io::CheckTiledMapFiles(Path("tiles"), index);
+  tiles::CheckTiledMapFiles(Path("tiles"), index);
   std::size_t points = 0;
-  for (const io::TiledMapTile& t : index.tiles) {
-    const PointCloud local = io::ReadTiledMapTile(Path("tiles"), index.origin_world, t);
+  for (const tiles::TiledMapTile& t : index.tiles) {
+    const PointCloud local = tiles::ReadTiledMapTile(Path("tiles"), index.origin_world, t);
     points += local.size();
     const io::CloudFile world = io::ReadCloud(Path("tiles") + "/" + t.file);
     EXPECT_NEAR(world.positions.front().x(), local.front().x() + index.origin_world.x(), 1e-3);

@@ -9,7 +9,7 @@
 #include "apps/cli_test_util.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/json.h"
-#include "hylo/io/tiled_map.h"
+#include "hylo/tiles/tiled_map.h"
 #include "test_data.h"
 
 namespace hylo {
@@ -54,11 +54,11 @@ TEST_F(TileCliTest, TilesAMapAndSaysHowFastAndHowBig) {
                  &error),
             0)
       << error;
-  const io::TiledMapIndex index = io::ReadTiledMapIndex(Path("tiles"));
+  const tiles::TiledMapIndex index = tiles::ReadTiledMapIndex(Path("tiles"));
   EXPECT_EQ(index.points, 240u * 120u);
   EXPECT_EQ(index.tiles.size(), 6u * 3u);
   EXPECT_EQ(index.origin_world, Eigen::Vector3d(600000.0, 5200000.0, 0.0));
-  io::CheckTiledMapFiles(Path("tiles"), index);
+  tiles::CheckTiledMapFiles(Path("tiles"), index);
   const io::Json summary = io::ReadJsonFile(Path("tile.json"));
   EXPECT_EQ(io::NumberAt(summary, "points_read"), 240.0 * 120.0);
   EXPECT_GT(io::NumberAt(summary, "points_per_s"), 0.0);
@@ -78,7 +78,7 @@ TEST_F(TileCliTest, BrokenTiledMapsAreNamedBeforeAnyOdometry) {
       Hylo("tile --in " + Path("map.pcd") + " --out " + Path("tiles") + " --tile-size 20", &error),
       0)
       << error;
-  const io::TiledMapIndex index = io::ReadTiledMapIndex(Path("tiles"));
+  const tiles::TiledMapIndex index = tiles::ReadTiledMapIndex(Path("tiles"));
   auto broken_copy = [&](const std::string& name) {
     fs::copy(Path("tiles"), Path(name), fs::copy_options::recursive);
     return Path(name);
@@ -90,16 +90,16 @@ TEST_F(TileCliTest, BrokenTiledMapsAreNamedBeforeAnyOdometry) {
   EXPECT_NE(error.find(index.tiles[3].file + ": missing"), std::string::npos) << error;
   // An index whose count disagrees with its tile.
   const std::string counts = broken_copy("counts");
-  io::TiledMapIndex edited = index;
+  tiles::TiledMapIndex edited = index;
   edited.tiles[2].points += 5;
   edited.points += 5;
-  io::WriteTiledMapIndex(counts, edited);
+  tiles::WriteTiledMapIndex(counts, edited);
   EXPECT_EQ(Localize(counts, &error), 1);
   EXPECT_NE(error.find(index.tiles[2].file), std::string::npos) << error;
   EXPECT_NE(error.find("does not match its tiles"), std::string::npos) << error;
   // A tile whose body is cut short (its header is fine): found when it loads, at the start.
   const std::string cut = broken_copy("cut");
-  for (const io::TiledMapTile& t : index.tiles) {
+  for (const tiles::TiledMapTile& t : index.tiles) {
     if (t.ix != 1 || t.iy != 1) continue;  // the tile of the guess: local (30, 30) m
     const std::string file = cut + "/" + t.file;
     fs::resize_file(file, fs::file_size(file) - 100);

@@ -32,9 +32,9 @@
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/cloud_stream.h"
 #include "hylo/io/json.h"
-#include "hylo/io/tiled_map.h"
+#include "hylo/tiles/tiled_map.h"
 #include "hylo/io/trajectory_io.h"
-#include "hylo/mapping/tiles.h"
+#include "hylo/tiles/tiles.h"
 #include "hylo/sim_io/session_writer.h"
 #include "measured_child.h"
 #include "repeated_site.h"
@@ -231,11 +231,11 @@ void ReportRssOverTime(const std::string& section, const Localized& r, Report* r
 // The corridor of the first `length_m` of the road: every tile within `radius_m`, written
 // whole (world frame) in nested crops of 1/4, 1/2 and all of its points, nearest first.
 std::vector<std::pair<std::string, std::size_t>> WriteCorridors(const Setup& s, double radius_m) {
-  const io::TiledMapIndex index = io::ReadTiledMapIndex(s.tiles);
-  const mapping::TileGrid grid(index.tile_size_m);
+  const tiles::TiledMapIndex index = tiles::ReadTiledMapIndex(s.tiles);
+  const tiles::TileGrid grid(index.tile_size_m);
   const Eigen::Vector3d a(s.road_start.x(), s.road_start.y(), 0.0);
-  std::vector<std::pair<double, const io::TiledMapTile*>> near;
-  for (const io::TiledMapTile& t : index.tiles) {
+  std::vector<std::pair<double, const tiles::TiledMapTile*>> near;
+  for (const tiles::TiledMapTile& t : index.tiles) {
     double best = 1e300;
     for (double y = 0.0; y <= s.short_length_m; y += 1.0) {
       const Eigen::Vector3d p = a + Eigen::Vector3d(0.0, y, 0.0) - index.origin_world;
@@ -253,7 +253,7 @@ std::vector<std::pair<std::string, std::size_t>> WriteCorridors(const Setup& s, 
     for (const auto& [d2, tile] : near) {
       if (writer.points() >= total * quarter / 4) break;
       PointCloud world;
-      for (const Eigen::Vector3f& p : io::ReadTiledMapTile(s.tiles, index.origin_world, *tile)) {
+      for (const Eigen::Vector3f& p : tiles::ReadTiledMapTile(s.tiles, index.origin_world, *tile)) {
         world.push_back((p.cast<double>() + index.origin_world).cast<float>());
       }
       writer.Add(world);
@@ -288,7 +288,7 @@ int main(int argc, char** argv) {
   report.Set("map", "points", hylo::io::ReadCloudInfo(s.map).points);
 
   // `hylo tile` on the whole map (--reuse-tiles: the tiles of an earlier run, not measured).
-  if (!reuse_tiles || !hylo::io::IsTiledMap(s.tiles)) {
+  if (!reuse_tiles || !hylo::tiles::IsTiledMap(s.tiles)) {
     const ChildRun tile = RunMeasured(
         {kHylo, "tile", "--in", s.map, "--out", s.tiles, "--json", s.work + "/tile.json"},
         s.work + "/tile.log");
@@ -304,8 +304,8 @@ int main(int argc, char** argv) {
     report.Set("hylo_tile", "points_per_s_cpu", hylo::io::NumberAt(t, "points_read") / tile.cpu_s);
     report.Set("hylo_tile", "peak_rss_mb", tile.peak_rss_mb);
   }
-  report.Set("tiles", "points", hylo::io::ReadTiledMapIndex(s.tiles).points);
-  report.Set("tiles", "tiles", hylo::io::ReadTiledMapIndex(s.tiles).tiles.size());
+  report.Set("tiles", "points", hylo::tiles::ReadTiledMapIndex(s.tiles).points);
+  report.Set("tiles", "tiles", hylo::tiles::ReadTiledMapIndex(s.tiles).tiles.size());
 
   const Localized full = Localize(s, s.full_bag, s.full_truth, s.tiles, "tiled_full");
   ReportRun("drive_tiled", full, &report);

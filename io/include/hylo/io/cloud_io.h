@@ -69,6 +69,12 @@ CloudFileInfo ReadCloudInfo(const std::string& path);
 void WriteCloud(const std::string& path, const CloudFile& cloud,
                 CloudEncoding encoding = CloudEncoding::kBinary);
 
+/// The positions a LAS file WriteCloud writes at `path` from `positions` (finite ones) reads
+/// back as: quantized to the grid the writer picks for them. Throws as WriteLas when no grid
+/// can hold them.
+std::vector<Eigen::Vector3d> LasQuantizedPositions(const std::string& path,
+                                                   const std::vector<Eigen::Vector3d>& positions);
+
 /// Format-specific entry points (ReadCloud/WriteCloud dispatch to these).
 CloudFile ReadPcd(const std::string& path);
 CloudFileInfo ReadPcdInfo(const std::string& path);

@@ -5,12 +5,12 @@
 // touches. Two trees rather than a per-point flag: a box delete on one tree can then never
 // remove a prior point, by construction, and the run's tree stays small. Queries merge both.
 //
-// A tiled prior (tiles.h) replaces the second tree by the tiles a TileStreamer keeps around
-// the vehicle: BeginScan posts the position and swaps in the newest finished set (a pointer
-// swap; files, thinning and tree builds stay on the loader thread). On demand (the start, a
-// lost vehicle), tiles the set does not hold are read synchronously through a TileCache.
-// Points the window drops from the run's tree can be kept per tile (hybrid mode over a tiled
-// map: they are written back as tiles at the end).
+// A streamed prior (streamed_prior.h; a tiled map, hylo::tiles) replaces the second tree by
+// the part held around the vehicle: BeginScan posts the position and swaps in what finished
+// loading (files, thinning and tree builds stay off the scan path). On demand (the start, a
+// lost vehicle), the parts not held are read synchronously. Points the window drops from the
+// run's tree can be kept (hybrid mode over a tiled map: they are written back as tiles at the
+// end).
 
 #include <Eigen/Core>
 #include <memory>
@@ -19,8 +19,7 @@
 
 #include "hylo/common/point_types.h"
 #include "hylo/mapping/ikd_tree.h"
-#include "hylo/mapping/tile_streamer.h"
-#include "hylo/mapping/tiles.h"
+#include "hylo/mapping/streamed_prior.h"
 #include "hylo/registration/neighbor_search.h"
 
 namespace hylo::mapping {
@@ -50,24 +49,20 @@ class MapManager final : public registration::NeighborSearch {
   /// Replaces the prior map (map frame, downsampled by the caller). Never windowed.
   void SetPrior(const PointCloud& points_map);
 
-  // --- a tiled prior (map frame = the tiles' local frame) ---
-  /// Replaces the prior by the tiles `streamer` keeps; `cache_max_points` bounds the on-demand
-  /// cache. Takes whatever set the streamer already finished.
-  void SetTiledPrior(std::shared_ptr<TileStreamer> streamer, std::size_t cache_max_points);
-  bool tiled() const { return streamer_ != nullptr; }
-  /// Scan path, before the scan's queries: posts `position_map` to the loader and swaps in the
-  /// tiles it finished since the last call. Nothing without a tiled prior.
+  // --- a streamed prior (map frame = its local frame) ---
+  /// Replaces the prior by `prior` (not null), taking whatever part it already holds.
+  void SetStreamedPrior(std::shared_ptr<StreamedPrior> prior);
+  bool streamed() const { return streamed_ != nullptr; }
+  /// Scan path, before the scan's queries: posts `position_map` to a streamed prior, which
+  /// swaps in what it finished loading since the last call. Nothing otherwise.
   void BeginScan(const Eigen::Vector3f& position_map);
-  /// True without a tiled prior, else whether `position_map` lies on one of its tiles.
+  /// True without a streamed prior, else whether `position_map` lies on it.
   bool OnPriorMap(const Eigen::Vector3f& position_map) const;
-  /// The loader's first failure ("" when none, or without a tiled prior).
+  /// A streamed prior's first load failure ("" when none, or without one).
   std::string prior_error() const;
-  /// Queries also read the tiles the set does not hold, synchronously (TileCache), and Size()
-  /// counts every tile; switched off, the cache is emptied. Either way the newest finished
-  /// tiles are swapped in.
+  /// A streamed prior's queries also read what it does not hold (StreamedPrior::SetOnDemand).
   void SetOnDemand(bool on_demand);
-  const TileStreamer* streamer() const { return streamer_.get(); }
-  const TileCache* tile_cache() const { return cache_.get(); }
+  const StreamedPrior* streamed_prior() const { return streamed_.get(); }
   /// Keep the points the window deletes from the run's tree (windowed_out()).
   void KeepWindowedOut(bool keep) { keep_windowed_out_ = keep; }
   const PointCloud& windowed_out() const { return windowed_out_; }
@@ -99,10 +94,7 @@ class MapManager final : public registration::NeighborSearch {
   MapManagerOptions options_;
   IkdTree run_;
   std::unique_ptr<IkdTree> prior_;
-  std::shared_ptr<TileStreamer> streamer_;  // tiled prior; null: none
-  std::shared_ptr<const TileSet> tiles_;    // the tiles held now (scan thread's copy)
-  std::unique_ptr<TileCache> cache_;        // on-demand reads of the other tiles
-  bool on_demand_ = false;
+  std::shared_ptr<StreamedPrior> streamed_;  // replaces prior_ when set
   bool keep_windowed_out_ = false;
   PointCloud windowed_out_;
   MapCounters counters_;

@@ -95,15 +95,15 @@ class OdometryPipeline {
   /// odometry starts only from a pose the ICP initializer accepted, or the pipeline fails with
   /// the reason.
   void SetPriorMap(const PointCloud& points_map);
-  /// Localization in a tiled prior instead (mapping/tiles.h; the map frame is the tiles' local
-  /// frame): `streamer` keeps the tiles around the vehicle, each scan posts the position to it
-  /// and swaps in the tiles it finished (a failed load fails the pipeline with its reason);
-  /// the start and a lost vehicle read other tiles on demand through a cache of at most
-  /// `cache_max_points`. The global localizer's raster is built from `overview_points` (the
-  /// map thinned for it; empty: no global search). Off the tiles the supervisor runs odometry
-  /// only (events left_map / reentered_map). Before the first scan, as SetPriorMap.
-  void SetTiledPriorMap(std::shared_ptr<mapping::TileStreamer> streamer,
-                        const PointCloud& overview_points, std::size_t cache_max_points);
+  /// Localization in a streamed prior instead (mapping/streamed_prior.h, e.g. a tiled map;
+  /// the map frame is its local frame): each scan posts the position to it and it swaps in
+  /// what it finished loading (a failed load fails the pipeline with its reason); the start
+  /// and a lost vehicle read the rest on demand. The global localizer's raster is built from
+  /// `overview_points` (the map thinned for it; empty: no global search). Off the map the
+  /// supervisor runs odometry only (events left_map / reentered_map). Before the first scan,
+  /// as SetPriorMap.
+  void SetStreamedPriorMap(std::shared_ptr<mapping::StreamedPrior> prior,
+                           const PointCloud& overview_points);
   void SetInitialGuess(const std::optional<Eigen::Isometry3d>& T_map_imu_guess);
   /// Relocalize around `T_map_imu_guess` with the next scan (e.g. ROS /initialpose). Before
   /// the start it replaces the initial guess. Needs a prior map.
@@ -147,7 +147,7 @@ class OdometryPipeline {
   void StartLocalization(const MeasurementGroup& group);
   void Fail(const std::string& why);
   // A tiled prior before each scan: the loader's news, its failures, on or off the tiles.
-  bool FollowTiledPrior();
+  bool FollowStreamedPrior();
   // odometry_pipeline.cpp
   bool ProcessScan(MeasurementGroup* group, ScanResult* result);
   void UpdateMap(const estimation::DeskewedScan& scan, ScanResult* result);

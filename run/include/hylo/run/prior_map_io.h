@@ -2,8 +2,8 @@
 // What every front end (the command line, the ROS node) does with a prior map: read it, thin
 // it, move it to a local origin near zero and give it to the pipeline with the start guess;
 // and write a map of the run back in the map file's own (world) frame. A prior map is a PCD/PLY
-// file, or a tiled map directory (io/tiled_map.h) for maps larger than memory, whose tiles
-// the pipeline streams around the vehicle.
+// file, or a tiled map directory (tiles/tiled_prior_map.h) for maps larger than memory, whose
+// tiles the pipeline streams around the vehicle.
 
 #include <Eigen/Geometry>
 #include <memory>
@@ -21,32 +21,11 @@ namespace hylo::run {
 /// localization in it from `T_world_imu_guess` (world = the map file's frame; none: the
 /// global localizer searches the whole map). Returns the map
 /// (its origin_world turns every output back into world coordinates). Throws naming the file
-/// when it cannot be read or holds no point. A tiled map directory goes to LoadTiledPriorMap.
+/// when it cannot be read or holds no point. A tiled map directory goes to
+/// tiles::LoadTiledPriorMap.
 mapping::PriorMap LoadPriorMap(const std::string& path, const mapping::PriorMapOptions& options,
                                const std::optional<Eigen::Isometry3d>& T_world_imu_guess,
                                odometry::OdometryPipeline* pipeline);
-
-/// The same for a tiled map directory: checks the index against every tile's header (a
-/// missing tile or a count that disagrees fails here, naming the file), hands the pipeline a
-/// TileStreamer over the tiles (and over DIR/map_added, the added points of earlier sessions,
-/// when present) with the options' tile_* settings, and builds the global localizer's raster
-/// from the map's overview. With a guess it returns once the tiles around it are loaded;
-/// without one nothing is preloaded (the global start reads tiles on demand). Tiles thinned
-/// at a voxel finer than options.resolution_m are thinned again as they load.
-mapping::PriorMap LoadTiledPriorMap(const std::string& dir, const mapping::PriorMapOptions& options,
-                                    const std::optional<Eigen::Isometry3d>& T_world_imu_guess,
-                                    odometry::OdometryPipeline* pipeline);
-
-/// What a tiled prior's loader did (tiles, loads, unloads, most points held, its CPU time),
-/// for a run's summary. `pipeline` must localize in a tiled prior.
-io::Json TiledPriorJson(const odometry::OdometryPipeline& pipeline);
-
-/// Hybrid mode over a tiled prior: the points the run added (including those its window
-/// dropped) and those of the prior's own map_added/ layer, written to `out_dir` as a tiled map
-/// in the prior's grid and origin, thinned at `voxel_m` (the run's map voxel). Moving it to
-/// <map>/map_added makes the next session start from the grown map. Returns the points written.
-std::size_t WriteAddedTiles(const std::string& out_dir, const mapping::PriorMap& prior,
-                            const odometry::OdometryPipeline& pipeline, double voxel_m);
 
 /// The prior as one neighbour search, for a run's final metrics: one tree over the whole map,
 /// or, for a tiled prior, its tiles read on demand (at most `cache_points` held).

@@ -20,9 +20,9 @@
 #include <thread>
 #include <vector>
 
-#include "hylo/mapping/tiles.h"
+#include "hylo/tiles/tiles.h"
 
-namespace hylo::mapping {
+namespace hylo::tiles {
 
 struct TileStreamerOptions {
   double load_radius_m = 110.0;   ///< tiles within this of the vehicle are loaded, m (> 0)
@@ -97,4 +97,4 @@ class TileStreamer {
   std::thread thread_;            // last: starts after every member above exists
 };
 
-}  // namespace hylo::mapping
+}  // namespace hylo::tiles

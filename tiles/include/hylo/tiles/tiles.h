@@ -21,7 +21,7 @@
 #include "hylo/mapping/ikd_tree.h"
 #include "hylo/registration/neighbor_search.h"
 
-namespace hylo::mapping {
+namespace hylo::tiles {
 
 struct TileKey {
   int32_t ix = 0;
@@ -55,7 +55,7 @@ bool IsWholeMultiple(double tile_size_m, double voxel_m);
 /// One tile as an index describes it.
 struct TileInfo {
   TileKey key;
-  Box3f bounds_local;      ///< bounds of its points (local frame), m
+  mapping::Box3f bounds_local;      ///< bounds of its points (local frame), m
   std::size_t points = 0;  ///< points it holds
 };
 
@@ -92,7 +92,7 @@ class TileLookup {
 /// A tile and its tree, immutable once built (shared between the loader and the scan path).
 struct LoadedTile {
   TileInfo info;
-  std::shared_ptr<const IkdTree> tree;
+  std::shared_ptr<const mapping::IkdTree> tree;
 };
 
 /// Builds a tile's tree from its points (the loader's and the cache's one way to do it).
@@ -143,7 +143,7 @@ class TileCache final : public registration::NeighborSearch {
   void Clear();
 
  private:
-  const IkdTree* Get(int index) const;  // index into source_->tiles()
+  const mapping::IkdTree* Get(int index) const;  // index into source_->tiles()
 
   std::shared_ptr<const TileSource> source_;
   TileGrid grid_;
@@ -155,4 +155,4 @@ class TileCache final : public registration::NeighborSearch {
   mutable std::size_t loads_ = 0;
 };
 
-}  // namespace hylo::mapping
+}  // namespace hylo::tiles

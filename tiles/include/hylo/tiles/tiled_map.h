@@ -28,7 +28,7 @@
 
 #include "hylo/common/point_types.h"
 
-namespace hylo::io {
+namespace hylo::tiles {
 
 /// The file format of a tiled map's tiles (the overview is always PCD).
 enum class TileFormat {
@@ -95,4 +95,4 @@ std::string TileFileName(int32_t ix, int32_t iy, TileFormat format = TileFormat:
 /// True for a tile file stored in the world frame (a LAS tile).
 bool IsWorldFrameTile(const std::string& file);
 
-}  // namespace hylo::io
+}  // namespace hylo::tiles

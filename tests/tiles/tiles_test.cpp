@@ -3,7 +3,7 @@
 // on-demand cache, the background loader (tiles appear and disappear as the position moves,
 // waited for deterministically), its failures, and the map manager's use of them.
 
-#include "hylo/mapping/tiles.h"
+#include "hylo/tiles/tiles.h"
 
 #include <gtest/gtest.h>
 
@@ -16,9 +16,10 @@
 #include <stdexcept>
 
 #include "hylo/mapping/map_manager.h"
-#include "hylo/mapping/tile_streamer.h"
+#include "hylo/tiles/tile_streamer.h"
+#include "hylo/tiles/tiled_prior.h"
 
-namespace hylo::mapping {
+namespace hylo::tiles {
 namespace {
 
 using registration::Neighbor;
@@ -110,7 +111,7 @@ TEST(TileSet, FindsTheSameNeighboursAsOneSearchOverAllPoints) {
     loaded.push_back(BuildTile(info, source.Load(info.key)));
   const TileSet set(10.0, loaded);
   EXPECT_EQ(set.Size(), points.size());
-  IkdTree truth;
+  mapping::IkdTree truth;
   truth.Build(points);
   ExpectSameNeighbours(truth, set, 2);
 }
@@ -121,7 +122,7 @@ TEST(TileCache, FindsTheSameNeighboursWithinItsBound) {
   const std::size_t bound = points.size() / 10;
   const TileCache cache(source, bound);
   EXPECT_EQ(cache.Size(), points.size());
-  IkdTree truth;
+  mapping::IkdTree truth;
   truth.Build(points);
   ExpectSameNeighbours(truth, cache, 4);
   EXPECT_GT(cache.tiles_loaded(), source->tiles().size());  // tiles were dropped and read again
@@ -204,14 +205,15 @@ TEST_F(StreamerTest, AFailedLoadIsReportedAndStopsTheLoader) {
 }
 
 TEST_F(StreamerTest, TheMapManagerSearchesRunPointsAndTheTilesItHolds) {
-  MapManagerOptions map_options;
+  mapping::MapManagerOptions map_options;
   map_options.window_size_m = 0.0;
-  MapManager map(map_options);
+  mapping::MapManager map(map_options);
   TileStreamerOptions options;
   options.load_radius_m = 25.0;
   auto streamer = std::make_shared<TileStreamer>(source_, options);
-  map.SetTiledPrior(streamer, 1000000);
-  EXPECT_TRUE(map.tiled());
+  auto tiled = std::make_shared<TiledPrior>(streamer, 1000000);
+  map.SetStreamedPrior(tiled);
+  EXPECT_TRUE(map.streamed());
   EXPECT_EQ(map.prior_size(), 0u);
   const Eigen::Vector3f p(-40.f, -20.f, 0.f);
   map.BeginScan(p);
@@ -228,7 +230,7 @@ TEST_F(StreamerTest, TheMapManagerSearchesRunPointsAndTheTilesItHolds) {
   const PointCloud kept = map.FlattenRun();  // downsampled on the tree
   ASSERT_FALSE(kept.empty());
   held.insert(held.end(), kept.begin(), kept.end());
-  IkdTree truth;
+  mapping::IkdTree truth;
   truth.Build(held);
   std::vector<Neighbor> want, got;
   for (float dx = -5.f; dx <= 5.f; dx += 0.7f) {
@@ -245,7 +247,7 @@ TEST_F(StreamerTest, TheMapManagerSearchesRunPointsAndTheTilesItHolds) {
   map.KNearest(far, 1, 1.f, &got);
   EXPECT_TRUE(got.empty());
   map.SetOnDemand(true);
-  EXPECT_EQ(map.Size(), map.run_size() + map.tile_cache()->Size());  // every tile searchable
+  EXPECT_EQ(map.Size(), map.run_size() + tiled->cache().Size());  // every tile searchable
   map.KNearest(far, 1, 1.f, &got);
   EXPECT_EQ(got.size(), 1u);
   EXPECT_TRUE(map.OnPriorMap(p));
@@ -253,4 +255,4 @@ TEST_F(StreamerTest, TheMapManagerSearchesRunPointsAndTheTilesItHolds) {
 }
 
 }  // namespace
-}  // namespace hylo::mapping
+}  // namespace hylo::tiles

@@ -6,12 +6,12 @@
 #include <cmath>
 #include <vector>
 
-#include "hylo/mapping/tiles.h"
+#include "hylo/tiles/tiles.h"
 
-namespace hylo::mapping::internal {
+namespace hylo::tiles::internal {
 
 /// Squared distance from `q` to a box (0 inside), m^2.
-inline float SquaredDistanceToBox(const Eigen::Vector3f& q, const Box3f& box) {
+inline float SquaredDistanceToBox(const Eigen::Vector3f& q, const mapping::Box3f& box) {
   const Eigen::Vector3f below = (box.min - q).cwiseMax(0.f);
   const Eigen::Vector3f above = (q - box.max).cwiseMax(0.f);
   return (below + above).squaredNorm();
@@ -47,7 +47,7 @@ void GridKNearest(const TileGrid& grid, const TileLookup& lookup, const Eigen::V
         if (x < lo.ix || x > hi.ix) continue;
         const int i = lookup.Find({static_cast<int32_t>(x), static_cast<int32_t>(y)});
         if (i < 0 || SquaredDistanceToBox(q, info(i).bounds_local) > bound2) continue;
-        const IkdTree* t = tree(i);
+        const mapping::IkdTree* t = tree(i);
         if (t == nullptr) continue;
         t->KNearest(q, k, std::sqrt(bound2), &found);
         MergeNearest(found, k, neighbors);
@@ -64,4 +64,4 @@ void GridKNearest(const TileGrid& grid, const TileLookup& lookup, const Eigen::V
   }
 }
 
-}  // namespace hylo::mapping::internal
+}  // namespace hylo::tiles::internal

@@ -1,7 +1,7 @@
 // Tiled maps: the index round trip and its errors, the tiles checked against the index, and
 // the streaming tiler against the whole-map split (the same points, thinned the same way).
 
-#include "hylo/io/tiled_map.h"
+#include "hylo/tiles/tiled_map.h"
 
 #include <gtest/gtest.h>
 
@@ -10,16 +10,16 @@
 #include <fstream>
 #include <random>
 
-#include "cloud_test_util.h"
+#include "io/cloud_test_util.h"
 #include "hylo/common/local_origin.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/json.h"
-#include "hylo/io/map_tiler.h"
-#include "hylo/mapping/tiles.h"
+#include "hylo/tiles/map_tiler.h"
+#include "hylo/tiles/tiles.h"
 #include "hylo/registration/voxel_filter.h"
 #include "test_data.h"
 
-namespace hylo::io {
+namespace hylo::tiles {
 namespace {
 
 namespace fs = std::filesystem;
@@ -79,12 +79,12 @@ TEST(TiledMapIndex, RoundTripsEveryField) {
 }
 
 // Writes `index` with one key replaced by `edit`, and expects the reader to name `fragment`.
-void ExpectIndexError(const std::function<void(Json*)>& edit, const std::string& fragment) {
+void ExpectIndexError(const std::function<void(io::Json*)>& edit, const std::string& fragment) {
   const std::string dir = hylo::testing::ScratchDir("tiled_index_bad");
   WriteTiledMapIndex(dir, SampleIndex());
-  Json json = ReadJsonFile(TiledMapIndexPath(dir));
+  io::Json json = io::ReadJsonFile(TiledMapIndexPath(dir));
   edit(&json);
-  std::ofstream(TiledMapIndexPath(dir)) << DumpJson(json);
+  std::ofstream(TiledMapIndexPath(dir)) << io::DumpJson(json);
   try {
     ReadTiledMapIndex(dir);
     ADD_FAILURE() << "no error, expected " << fragment;
@@ -96,24 +96,24 @@ void ExpectIndexError(const std::function<void(Json*)>& edit, const std::string&
 }
 
 TEST(TiledMapIndex, BadIndexesNameTheKey) {
-  ExpectIndexError([](Json* j) { j->erase("tile_size_m"); }, "'tile_size_m'");
-  ExpectIndexError([](Json* j) { (*j)["tiles"][1].erase("points"); }, "'tiles[1].points'");
-  ExpectIndexError([](Json* j) { (*j)["tiles"][2]["min"] = "near"; }, "'tiles[2].min'");
-  ExpectIndexError([](Json* j) { (*j)["version"] = 99; }, "version 99");
-  ExpectIndexError([](Json* j) { (*j)["tiles"][1]["ix"] = (*j)["tiles"][0]["ix"]; },
+  ExpectIndexError([](io::Json* j) { j->erase("tile_size_m"); }, "'tile_size_m'");
+  ExpectIndexError([](io::Json* j) { (*j)["tiles"][1].erase("points"); }, "'tiles[1].points'");
+  ExpectIndexError([](io::Json* j) { (*j)["tiles"][2]["min"] = "near"; }, "'tiles[2].min'");
+  ExpectIndexError([](io::Json* j) { (*j)["version"] = 99; }, "version 99");
+  ExpectIndexError([](io::Json* j) { (*j)["tiles"][1]["ix"] = (*j)["tiles"][0]["ix"]; },
                    "listed twice");
-  ExpectIndexError([](Json* j) { (*j)["points"] = 7; }, "key 'points' says 7");
-  ExpectIndexError([](Json* j) { (*j)["tiles"][0]["file"] = "../elsewhere.pcd"; },
+  ExpectIndexError([](io::Json* j) { (*j)["points"] = 7; }, "key 'points' says 7");
+  ExpectIndexError([](io::Json* j) { (*j)["tiles"][0]["file"] = "../elsewhere.pcd"; },
                    "not a file inside the map directory");
-  ExpectIndexError([](Json* j) { (*j)["format"] = "something else"; }, "'format'");
+  ExpectIndexError([](io::Json* j) { (*j)["format"] = "something else"; }, "'format'");
 }
 
 // A random map with UTM-sized coordinates: a ground sheet with bumps over 130 m x 90 m plus
 // walls, some duplicate points, written as a binary_compressed PCD (read by field cursors).
-CloudFile RandomMap(const Eigen::Vector3d& offset, unsigned seed) {
+io::CloudFile RandomMap(const Eigen::Vector3d& offset, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> x(-20.0, 110.0), y(-40.0, 50.0), u(0.0, 1.0);
-  CloudFile map;
+  io::CloudFile map;
   for (int i = 0; i < 60000; ++i) {
     const double px = x(rng), py = y(rng);
     const double pz = 0.3 * std::sin(0.2 * px) + (u(rng) < 0.2 ? 5.0 * u(rng) : 0.0);
@@ -126,8 +126,8 @@ CloudFile RandomMap(const Eigen::Vector3d& offset, unsigned seed) {
 TEST(MapTiler, StreamingTilerKeepsExactlyTheWholeMapThinnedAtOnce) {
   const std::string dir = hylo::testing::ScratchDir("map_tiler");
   const Eigen::Vector3d offset(512345.678, 5403210.123, 231.5);
-  const CloudFile map = RandomMap(offset, 3);
-  WriteCloud(dir + "/map.pcd", map, CloudEncoding::kBinaryCompressed);
+  const io::CloudFile map = RandomMap(offset, 3);
+  io::WriteCloud(dir + "/map.pcd", map, io::CloudEncoding::kBinaryCompressed);
   TileMapOptions options;
   options.tile_size_m = 25.0;
   options.voxel_m = 0.25;
@@ -146,12 +146,12 @@ TEST(MapTiler, StreamingTilerKeepsExactlyTheWholeMapThinnedAtOnce) {
   EXPECT_EQ(summary.points_written, reference.size());
   EXPECT_GT(index.tiles.size(), 10u);
   CheckTiledMapFiles(dir + "/tiled", index);
-  const mapping::TileGrid grid(index.tile_size_m);
+  const tiles::TileGrid grid(index.tile_size_m);
   PointCloud tiled;
   for (const TiledMapTile& t : index.tiles) {
     const PointCloud points = ReadTiledMapTile(dir + "/tiled", index.origin_world, t);
     for (const Eigen::Vector3f& p : points) {
-      const mapping::TileKey key = grid.KeyOf(p, static_cast<float>(index.voxel_m));
+      const tiles::TileKey key = grid.KeyOf(p, static_cast<float>(index.voxel_m));
       ASSERT_EQ(key.ix, t.ix);
       ASSERT_EQ(key.iy, t.iy);
     }
@@ -191,8 +191,8 @@ TEST(MapTiler, StreamingTilerKeepsExactlyTheWholeMapThinnedAtOnce) {
 // back, in the local frame, as the PCD tiles' points to within the LAS grid's half step.
 TEST(MapTiler, LasTilesHoldTheWorldFrameAndReadBackLocal) {
   const std::string dir = hylo::testing::ScratchDir("map_tiler_las");
-  const CloudFile map = RandomMap(Eigen::Vector3d(512345.678, 5403210.123, 231.5), 7);
-  WriteCloud(dir + "/map.las", map);
+  const io::CloudFile map = RandomMap(Eigen::Vector3d(512345.678, 5403210.123, 231.5), 7);
+  io::WriteCloud(dir + "/map.las", map);
   TileMapOptions options;
   options.tile_size_m = 25.0;
   options.voxel_m = 0.25;
@@ -209,7 +209,7 @@ TEST(MapTiler, LasTilesHoldTheWorldFrameAndReadBackLocal) {
     EXPECT_EQ(t.file, TileFileName(t.ix, t.iy, TileFormat::kLas));
     ASSERT_EQ(t.points, pcd.tiles[i].points);
     // The file is in the world frame ...
-    const CloudFile file = ReadCloud(dir + "/las/" + t.file);
+    const io::CloudFile file = io::ReadCloud(dir + "/las/" + t.file);
     EXPECT_GT(file.positions.front().y(), 5.4e6);
     // ... and the tile, read as the streamer reads it, is the PCD tile's points to 0.1 mm.
     const PointCloud a = ReadTiledMapTile(dir + "/las", las.origin_world, t);
@@ -223,14 +223,14 @@ TEST(MapTiler, LasTilesHoldTheWorldFrameAndReadBackLocal) {
 
 TEST(MapTiler, OutputIsCompleteOrAbsent) {
   const std::string dir = hylo::testing::ScratchDir("map_tiler_atomic");
-  WriteCloud(dir + "/map.ply", RandomMap(Eigen::Vector3d::Zero(), 4));
+  io::WriteCloud(dir + "/map.ply", RandomMap(Eigen::Vector3d::Zero(), 4));
   fs::create_directories(dir + "/busy");
   std::ofstream(dir + "/busy/notes.txt") << "not a map";
   TileMapOptions options;
   EXPECT_THROW(TileMapFile(dir + "/map.ply", dir + "/busy", options), std::runtime_error);
   EXPECT_TRUE(fs::exists(dir + "/busy/notes.txt"));
   // A failing input leaves nothing under the output's name, nor any partial directory.
-  testing::Truncate(dir + "/map.ply", dir + "/cut.ply", testing::FileSize(dir + "/map.ply") / 2);
+  io::testing::Truncate(dir + "/map.ply", dir + "/cut.ply", io::testing::FileSize(dir + "/map.ply") / 2);
   EXPECT_THROW(TileMapFile(dir + "/cut.ply", dir + "/out", options), std::runtime_error);
   std::size_t entries = 0;
   for (const auto& e : fs::directory_iterator(dir)) entries += e.is_directory() ? 1 : 0;
@@ -242,7 +242,7 @@ TEST(MapTiler, OutputIsCompleteOrAbsent) {
   TileMapFile(dir + "/map.ply", dir + "/out/", options);
   EXPECT_EQ(ReadTiledMapIndex(dir + "/out").tile_size_m, 20.0);
   for (const auto& e : fs::directory_iterator(dir + "/out/tiles")) {
-    EXPECT_NO_THROW(ReadCloudInfo(e.path().string()));
+    EXPECT_NO_THROW(io::ReadCloudInfo(e.path().string()));
   }
   // Invalid options are named.
   options.voxel_m = 0.3;  // 20 m is not a whole number of 0.3 m voxels
@@ -251,7 +251,7 @@ TEST(MapTiler, OutputIsCompleteOrAbsent) {
 
 TEST(TiledMapFiles, TilesThatDoNotMatchTheIndexAreNamed) {
   const std::string dir = hylo::testing::ScratchDir("tiled_files");
-  WriteCloud(dir + "/map.pcd", RandomMap(Eigen::Vector3d(1000.0, 2000.0, 0.0), 5));
+  io::WriteCloud(dir + "/map.pcd", RandomMap(Eigen::Vector3d(1000.0, 2000.0, 0.0), 5));
   TileMapOptions options;
   TileMapFile(dir + "/map.pcd", dir + "/t", options);
   TiledMapIndex index = ReadTiledMapIndex(dir + "/t");
@@ -272,7 +272,7 @@ TEST(TiledMapFiles, TilesThatDoNotMatchTheIndexAreNamed) {
   index.tiles[0].points -= 1;
   index.tiles[0].max_local.z() += 1.f;
   expect_error([&] { ReadTiledMapTile(dir + "/t", index.origin_world, index.tiles[0]); }, "does not match its tiles");
-  testing::Truncate(first, first + ".cut", testing::FileSize(first) - 8);
+  io::testing::Truncate(first, first + ".cut", io::testing::FileSize(first) - 8);
   fs::rename(first + ".cut", first);
   expect_error([&] { ReadTiledMapTile(dir + "/t", index.origin_world, index.tiles[0]); }, "truncated");
   fs::remove(first);
@@ -281,4 +281,4 @@ TEST(TiledMapFiles, TilesThatDoNotMatchTheIndexAreNamed) {
 }
 
 }  // namespace
-}  // namespace hylo::io
+}  // namespace hylo::tiles

@@ -1,5 +1,5 @@
 // Streaming map tiler (map_tiler.h).
-#include "hylo/io/map_tiler.h"
+#include "hylo/tiles/map_tiler.h"
 
 #include <unistd.h>
 
@@ -16,16 +16,14 @@
 #include "hylo/common/voxel_key.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/cloud_stream.h"
-#include "hylo/io/tiled_map.h"
-#include "hylo/mapping/tiles.h"
+#include "hylo/tiles/tiled_map.h"
+#include "hylo/tiles/tiles.h"
 #include "hylo/registration/voxel_filter.h"
-#include "las_format.h"
 
-namespace hylo::io {
+namespace hylo::tiles {
 namespace {
 
 namespace fs = std::filesystem;
-using mapping::TileKey;
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -105,9 +103,9 @@ PointCloud LowestPerVoxel(const PointCloud& points, float voxel_m) {
 // A tile's file content, and its count and bounds as a reader will see them: PCD tiles hold the
 // local float32 points as they are; LAS tiles the world positions, which the reader quantizes to
 // the writer's grid and moves back by the origin.
-CloudFile TileFile(const std::string& path, const PointCloud& points,
+io::CloudFile TileFile(const std::string& path, const PointCloud& points,
                    const Eigen::Vector3d& origin_world, TileFormat format, TiledMapTile* tile) {
-  CloudFile file;
+  io::CloudFile file;
   file.positions.reserve(points.size());
   for (const Eigen::Vector3f& p : points) {
     file.positions.push_back(p.cast<double>() + (format == TileFormat::kLas ? origin_world
@@ -124,7 +122,7 @@ CloudFile TileFile(const std::string& path, const PointCloud& points,
     for (const Eigen::Vector3f& p : points) bound(p);
     return file;
   }
-  for (const Eigen::Vector3d& q : internal::LasQuantizedPositions(path, file.positions)) {
+  for (const Eigen::Vector3d& q : io::LasQuantizedPositions(path, file.positions)) {
     bound((q - origin_world).cast<float>());
   }
   return file;
@@ -184,7 +182,7 @@ bool TileMapOptions::IsValid(std::string* why) const {
       !CheckNonNegative("origin_granularity_m", origin_granularity_m, why)) {
     return false;
   }
-  if (voxel_m > 0.0 && !mapping::IsWholeMultiple(tile_size_m, voxel_m)) {
+  if (voxel_m > 0.0 && !IsWholeMultiple(tile_size_m, voxel_m)) {
     return FailOption("tile_size_m", tile_size_m,
                       "must be a whole multiple of voxel_m = " + std::to_string(voxel_m) +
                           " (a voxel must not straddle two tiles)",
@@ -204,7 +202,7 @@ TileMapSummary TileMap(const PositionChunks& next, const std::string& source,
   const std::string out_dir = WithoutTrailingSlash(out_dir_in);
   CheckReplaceable(out_dir);
   PartialDir partial(out_dir + ".partial-" + std::to_string(::getpid()));
-  const mapping::TileGrid grid(options.tile_size_m);
+  const TileGrid grid(options.tile_size_m);
   const auto voxel = static_cast<float>(options.voxel_m);
   TileMapSummary summary;
   TiledMapIndex index;
@@ -235,9 +233,9 @@ TileMapSummary TileMap(const PositionChunks& next, const std::string& source,
   summary.split_s = SecondsSince(start);
 
   start = std::chrono::steady_clock::now();
-  std::unique_ptr<PcdXyzWriter> overview;
+  std::unique_ptr<io::PcdXyzWriter> overview;
   if (options.overview_voxel_m > 0.0) {
-    overview = std::make_unique<PcdXyzWriter>(partial.path() + "/overview.pcd");
+    overview = std::make_unique<io::PcdXyzWriter>(partial.path() + "/overview.pcd");
   }
   index.min_local = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity());
   index.max_local = -index.min_local;
@@ -249,10 +247,10 @@ TileMapSummary TileMap(const PositionChunks& next, const std::string& source,
     tile.iy = key.iy;
     tile.file = TileFileName(key.ix, key.iy, options.tile_format);
     const std::string path = partial.path() + "/" + tile.file;
-    const CloudFile file =
+    const io::CloudFile file =
         TileFile(path, voxel > 0.f ? registration::UniformSample(raw, voxel) : raw,
                  index.origin_world, options.tile_format, &tile);
-    WriteCloud(path, file, CloudEncoding::kBinary);
+    io::WriteCloud(path, file, io::CloudEncoding::kBinary);
     index.min_local = index.min_local.cwiseMin(tile.min_local);
     index.max_local = index.max_local.cwiseMax(tile.max_local);
     index.points += tile.points;
@@ -277,9 +275,9 @@ TileMapSummary TileMap(const PositionChunks& next, const std::string& source,
 
 TileMapSummary TileMapFile(const std::string& in_path, const std::string& out_dir,
                            const TileMapOptions& options) {
-  std::unique_ptr<CloudStream> stream = CloudStream::Open(in_path);
+  std::unique_ptr<io::CloudStream> stream = io::CloudStream::Open(in_path);
   std::size_t non_finite = 0;
-  CloudFile chunk;
+  io::CloudFile chunk;
   const PositionChunks next = [&](std::vector<Eigen::Vector3d>* positions) {
     if (!stream->Next(options.chunk_points, &chunk)) return false;
     non_finite += chunk.dropped_non_finite;
@@ -291,4 +289,4 @@ TileMapSummary TileMapFile(const std::string& in_path, const std::string& out_di
   return summary;
 }
 
-}  // namespace hylo::io
+}  // namespace hylo::tiles

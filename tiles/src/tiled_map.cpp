@@ -1,5 +1,5 @@
 // The tiled map directory: index.json and its tiles (tiled_map.h).
-#include "hylo/io/tiled_map.h"
+#include "hylo/tiles/tiled_map.h"
 
 #include <filesystem>
 #include <set>
@@ -12,7 +12,7 @@
 #include "hylo/io/json.h"
 #include "hylo/io/text.h"
 
-namespace hylo::io {
+namespace hylo::tiles {
 namespace {
 
 constexpr const char* kFormat = "hylo tiled map";
@@ -26,35 +26,35 @@ class Reader {
  public:
   explicit Reader(std::string file) : file_(std::move(file)) {}
 
-  const Json& At(const Json& object, const std::string& key, const std::string& path) const {
+  const io::Json& At(const io::Json& object, const std::string& key, const std::string& path) const {
     if (!object.is_object() || !object.contains(key)) Fail(file_, "missing key '" + path + "'");
     return object.at(key);
   }
-  double Number(const Json& object, const std::string& key, const std::string& path) const {
-    const Json& value = At(object, key, path);
+  double Number(const io::Json& object, const std::string& key, const std::string& path) const {
+    const io::Json& value = At(object, key, path);
     if (!value.is_number()) Fail(file_, "key '" + path + "' is not a number");
     return value.get<double>();
   }
-  std::size_t Count(const Json& object, const std::string& key, const std::string& path) const {
-    const Json& value = At(object, key, path);
+  std::size_t Count(const io::Json& object, const std::string& key, const std::string& path) const {
+    const io::Json& value = At(object, key, path);
     if (!value.is_number_unsigned() && !(value.is_number_integer() && value.get<int64_t>() >= 0)) {
       Fail(file_, "key '" + path + "' is not a count");
     }
     return value.get<std::size_t>();
   }
-  int32_t Int(const Json& object, const std::string& key, const std::string& path) const {
-    const Json& value = At(object, key, path);
+  int32_t Int(const io::Json& object, const std::string& key, const std::string& path) const {
+    const io::Json& value = At(object, key, path);
     if (!value.is_number_integer()) Fail(file_, "key '" + path + "' is not an integer");
     return value.get<int32_t>();
   }
-  std::string Text(const Json& object, const std::string& key, const std::string& path) const {
-    const Json& value = At(object, key, path);
+  std::string Text(const io::Json& object, const std::string& key, const std::string& path) const {
+    const io::Json& value = At(object, key, path);
     if (!value.is_string()) Fail(file_, "key '" + path + "' is not a string");
     return value.get<std::string>();
   }
-  Eigen::Vector3d Vector(const Json& object, const std::string& key,
+  Eigen::Vector3d Vector(const io::Json& object, const std::string& key,
                          const std::string& path) const {
-    const Json& value = At(object, key, path);
+    const io::Json& value = At(object, key, path);
     if (!value.is_array() || value.size() != 3) Fail(file_, "key '" + path + "' is not [x, y, z]");
     Eigen::Vector3d v;
     for (int k = 0; k < 3; ++k) {
@@ -65,7 +65,7 @@ class Reader {
     return v;
   }
   // A path inside the map directory, relative and without "..".
-  std::string RelativeFile(const Json& object, const std::string& key,
+  std::string RelativeFile(const io::Json& object, const std::string& key,
                            const std::string& path) const {
     const std::string file = Text(object, key, path);
     const std::filesystem::path p(file);
@@ -81,10 +81,10 @@ class Reader {
   std::string file_;
 };
 
-Json Vec(const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}); }
-Json Vec(const Eigen::Vector3f& v) { return Vec(Eigen::Vector3d(v.cast<double>())); }
+io::Json Vec(const Eigen::Vector3d& v) { return io::Json::array({v.x(), v.y(), v.z()}); }
+io::Json Vec(const Eigen::Vector3f& v) { return Vec(Eigen::Vector3d(v.cast<double>())); }
 
-TiledMapTile ReadTile(const Reader& r, const Json& t, const std::string& path,
+TiledMapTile ReadTile(const Reader& r, const io::Json& t, const std::string& path,
                       const std::string& index_file) {
   TiledMapTile tile;
   tile.ix = r.Int(t, "ix", path + ".ix");
@@ -119,13 +119,13 @@ std::string TileFileName(int32_t ix, int32_t iy, TileFormat format) {
 }
 
 bool IsWorldFrameTile(const std::string& file) {
-  return ToLower(std::filesystem::path(file).extension().string()) == ".las";
+  return io::ToLower(std::filesystem::path(file).extension().string()) == ".las";
 }
 
 TiledMapIndex ReadTiledMapIndex(const std::string& dir) {
   const std::string file = TiledMapIndexPath(dir);
   if (!std::filesystem::is_directory(dir)) Fail(dir, "not a directory (a tiled map is one)");
-  const Json json = ReadJsonFile(file);
+  const io::Json json = io::ReadJsonFile(file);
   const Reader r(file);
   if (r.Text(json, "format", "format") != kFormat) {
     Fail(file, "key 'format' is not '" + std::string(kFormat) + "'");
@@ -146,16 +146,16 @@ TiledMapIndex ReadTiledMapIndex(const std::string& dir) {
   index.origin_world = r.Vector(json, "origin_world", "origin_world");
   index.source = r.Text(json, "source", "source");
   index.points = r.Count(json, "points", "points");
-  const Json& bounds = r.At(json, "bounds_local", "bounds_local");
+  const io::Json& bounds = r.At(json, "bounds_local", "bounds_local");
   index.min_local = r.Vector(bounds, "min", "bounds_local.min").cast<float>();
   index.max_local = r.Vector(bounds, "max", "bounds_local.max").cast<float>();
-  const Json& overview = r.At(json, "overview", "overview");
+  const io::Json& overview = r.At(json, "overview", "overview");
   if (!overview.is_null()) {
     index.overview_file = r.RelativeFile(overview, "file", "overview.file");
     index.overview_voxel_m = r.Number(overview, "voxel_m", "overview.voxel_m");
     index.overview_points = r.Count(overview, "points", "overview.points");
   }
-  const Json& tiles = r.At(json, "tiles", "tiles");
+  const io::Json& tiles = r.At(json, "tiles", "tiles");
   if (!tiles.is_array()) Fail(file, "key 'tiles' is not an array");
   std::set<std::pair<int32_t, int32_t>> keys;
   std::size_t sum = 0;
@@ -177,7 +177,7 @@ TiledMapIndex ReadTiledMapIndex(const std::string& dir) {
 }
 
 void WriteTiledMapIndex(const std::string& dir, const TiledMapIndex& index) {
-  Json j;
+  io::Json j;
   j["format"] = kFormat;
   j["version"] = index.version;
   j["tile_size_m"] = index.tile_size_m;
@@ -195,9 +195,9 @@ void WriteTiledMapIndex(const std::string& dir, const TiledMapIndex& index) {
                      {"voxel_m", index.overview_voxel_m},
                      {"points", index.overview_points}};
   }
-  j["tiles"] = Json::array();
+  j["tiles"] = io::Json::array();
   for (const TiledMapTile& t : index.tiles) {
-    Json tile;
+    io::Json tile;
     tile["ix"] = t.ix;
     tile["iy"] = t.iy;
     tile["file"] = t.file;
@@ -206,7 +206,7 @@ void WriteTiledMapIndex(const std::string& dir, const TiledMapIndex& index) {
     tile["max"] = Vec(t.max_local);
     j["tiles"].push_back(tile);
   }
-  WriteFileAtomically(TiledMapIndexPath(dir), DumpJson(j) + "\n");
+  io::WriteFileAtomically(TiledMapIndexPath(dir), io::DumpJson(j) + "\n");
 }
 
 void CheckTiledMapFiles(const std::string& dir, const TiledMapIndex& index) {
@@ -215,7 +215,7 @@ void CheckTiledMapFiles(const std::string& dir, const TiledMapIndex& index) {
     if (!std::filesystem::is_regular_file(path)) {
       Fail(path, "missing (" + TiledMapIndexPath(dir) + " lists it)");
     }
-    const CloudFileInfo info = ReadCloudInfo(path);
+    const io::CloudFileInfo info = io::ReadCloudInfo(path);
     if (info.points != t.points) {
       Fail(path, std::to_string(info.points) + " points, " + TiledMapIndexPath(dir) + " says " +
                      std::to_string(t.points) + ": the index does not match its tiles");
@@ -226,7 +226,7 @@ void CheckTiledMapFiles(const std::string& dir, const TiledMapIndex& index) {
 PointCloud ReadTiledMapTile(const std::string& dir, const Eigen::Vector3d& origin_world,
                             const TiledMapTile& tile) {
   const std::string path = JoinPath(dir, tile.file);
-  const CloudFile cloud = ReadCloud(path);
+  const io::CloudFile cloud = io::ReadCloud(path);
   const Eigen::Vector3d shift = IsWorldFrameTile(tile.file) ? origin_world : Eigen::Vector3d::Zero();
   if (cloud.positions.size() != tile.points || cloud.dropped_non_finite > 0) {
     Fail(path, std::to_string(cloud.positions.size()) + " finite points, " +
@@ -255,7 +255,7 @@ PointCloud ReadTiledMapTile(const std::string& dir, const Eigen::Vector3d& origi
 PointCloud ReadTiledMapOverview(const std::string& dir, const TiledMapIndex& index) {
   if (index.overview_file.empty()) return {};
   const std::string path = JoinPath(dir, index.overview_file);
-  const CloudFile cloud = ReadCloud(path);
+  const io::CloudFile cloud = io::ReadCloud(path);
   if (cloud.positions.size() != index.overview_points) {
     Fail(path, std::to_string(cloud.positions.size()) + " points, " + TiledMapIndexPath(dir) +
                    " says " + std::to_string(index.overview_points));
@@ -266,4 +266,4 @@ PointCloud ReadTiledMapOverview(const std::string& dir, const TiledMapIndex& ind
   return points;
 }
 
-}  // namespace hylo::io
+}  // namespace hylo::tiles

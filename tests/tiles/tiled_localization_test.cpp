@@ -13,9 +13,11 @@
 
 #include "estimation/sim_localization_util.h"
 #include "hylo/io/cloud_io.h"
-#include "hylo/io/map_tiler.h"
-#include "hylo/io/tiled_map.h"
 #include "hylo/run/prior_map_io.h"
+#include "hylo/tiles/map_tiler.h"
+#include "hylo/tiles/tiled_map.h"
+#include "hylo/tiles/tiled_prior.h"
+#include "hylo/tiles/tiled_prior_map.h"
 #include "test_data.h"
 
 namespace hylo::testing {
@@ -55,9 +57,9 @@ const PriorFiles& SharedFiles() {
     for (const Eigen::Vector3f& p : SharedPrior().points_map)
       cloud.positions.push_back(p.cast<double>());
     io::WriteCloud(f.pcd, cloud);
-    io::TileMapOptions options;
+    tiles::TileMapOptions options;
     options.tile_size_m = 20.0;  // ~40 tiles over the site: they stream during the drive
-    io::TileMapFile(f.pcd, f.tiled, options);
+    tiles::TileMapFile(f.pcd, f.tiled, options);
     return f;
   }();
   return files;
@@ -133,7 +135,10 @@ TEST_P(TiledLocalization, GivesTheUntiledMapsTrajectory) {
   // The same map: the tiler thins as the whole-map load does, with the same origin.
   EXPECT_EQ(tiled.prior.num_kept, whole.prior.num_kept);
   EXPECT_EQ(tiled.prior.origin_world, whole.prior.origin_world);
-  const auto stats = tiled.sink->pipeline.map().streamer()->stats();
+  const auto& streamer =
+      dynamic_cast<const tiles::TiledPrior&>(*tiled.sink->pipeline.map().streamed_prior())
+          .streamer();
+  const auto stats = streamer.stats();
   std::printf(
       "[%s] ATE whole map %.5f m, tiled %.5f m (rotation %.4f / %.4f deg); %zu scans / "
       "%zu; tiles loaded %zu, unloaded %zu, at most %zu tiles (%zu of %zu points) held\n",
@@ -149,7 +154,7 @@ TEST_P(TiledLocalization, GivesTheUntiledMapsTrajectory) {
   // This site is small for the window (70 m around the vehicle covers most of it at times):
   // what must show is tiles leaving and coming back as the vehicle moves.
   EXPECT_GT(stats.tiles_unloaded, 0u);
-  EXPECT_GT(stats.tiles_loaded, tiled.sink->pipeline.map().streamer()->source().tiles().size());
+  EXPECT_GT(stats.tiles_loaded, streamer.source().tiles().size());
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, TiledLocalization,
@@ -168,24 +173,24 @@ TEST(TiledLocalizationOffMap, AHoleInTheTilesIsCrossedInOdometryModeAndSaidSo) {
   // The tiled map without the tiles the route crosses between x = 62 and 78 m (site frame).
   const std::string dir = ScratchDir("tiled_hole") + "/holed";
   std::filesystem::copy(SharedFiles().tiled, dir, std::filesystem::copy_options::recursive);
-  io::TiledMapIndex index = io::ReadTiledMapIndex(dir);
-  const mapping::TileGrid grid(index.tile_size_m);
-  std::vector<mapping::TileKey> hole;
+  tiles::TiledMapIndex index = tiles::ReadTiledMapIndex(dir);
+  const tiles::TileGrid grid(index.tile_size_m);
+  std::vector<tiles::TileKey> hole;
   for (double x = 62.0; x <= 78.0; x += 0.5) {
     const Eigen::Vector3d p_map =
         SharedPrior().T_site_map.inverse() * Eigen::Vector3d(x, 47.0, 0.0);
     hole.push_back(grid.KeyOf((p_map - index.origin_world).cast<float>()));
   }
-  std::vector<io::TiledMapTile> kept;
+  std::vector<tiles::TiledMapTile> kept;
   index.points = 0;
-  for (const io::TiledMapTile& t : index.tiles) {
-    if (std::count(hole.begin(), hole.end(), mapping::TileKey{t.ix, t.iy}) > 0) continue;
+  for (const tiles::TiledMapTile& t : index.tiles) {
+    if (std::count(hole.begin(), hole.end(), tiles::TileKey{t.ix, t.iy}) > 0) continue;
     kept.push_back(t);
     index.points += t.points;
   }
   ASSERT_LT(kept.size(), index.tiles.size());
   index.tiles = kept;
-  io::WriteTiledMapIndex(dir, index);
+  tiles::WriteTiledMapIndex(dir, index);
   const SessionRun run = RunSessionB(dir, EastwardB(), Estimator::Backend::kIeskf, -1.0,
                                      PerturbedStart(EastwardB(), 0.5, -0.5, 5.0));
   const auto& pipeline = run.sink->pipeline;
@@ -220,10 +225,10 @@ TEST(TiledLocalizationHybrid, AddedPointsAreWrittenAsTilesAndLoadedByTheNextSess
   const std::size_t added = map.run_size() + map.windowed_out().size();
   ASSERT_GT(added, 100u);
   const std::size_t written =
-      run::WriteAddedTiles(dir + "/out/map_added", first.prior, first.sink->pipeline, 0.5);
+      tiles::WriteAddedTiles(dir + "/out/map_added", first.prior, first.sink->pipeline, 0.5);
   EXPECT_EQ(written, added);  // already thinned at the map voxel on the run's tree
-  const io::TiledMapIndex layer = io::ReadTiledMapIndex(dir + "/out/map_added");
-  const io::TiledMapIndex base = io::ReadTiledMapIndex(map_dir);
+  const tiles::TiledMapIndex layer = tiles::ReadTiledMapIndex(dir + "/out/map_added");
+  const tiles::TiledMapIndex base = tiles::ReadTiledMapIndex(map_dir);
   EXPECT_EQ(layer.origin_world, base.origin_world);
   EXPECT_EQ(layer.tile_size_m, base.tile_size_m);
   // The next session starts from the grown map: the layer moved into the map directory.
@@ -234,7 +239,7 @@ TEST(TiledLocalizationHybrid, AddedPointsAreWrittenAsTilesAndLoadedByTheNextSess
   ASSERT_TRUE(second.ate.ok);
   EXPECT_LE(second.ate.rmse_m, 0.03);
   // Its own additions (none: localization only) leave the earlier layer as it was written.
-  EXPECT_EQ(run::WriteAddedTiles(dir + "/again", second.prior, second.sink->pipeline, 0.5),
+  EXPECT_EQ(tiles::WriteAddedTiles(dir + "/again", second.prior, second.sink->pipeline, 0.5),
             layer.points);
 }
 

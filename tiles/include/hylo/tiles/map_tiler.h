@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
-#include "hylo/io/tiled_map.h"
+#include "hylo/tiles/tiled_map.h"
 
-namespace hylo::io {
+namespace hylo::tiles {
 
 struct TileMapOptions {
   double tile_size_m = 50.0;            ///< edge of a tile, m (> 0; a whole multiple of voxel_m)
@@ -67,4 +67,4 @@ TileMapSummary TileMap(const PositionChunks& next, const std::string& source,
 TileMapSummary TileMapFile(const std::string& in_path, const std::string& out_dir,
                            const TileMapOptions& options);
 
-}  // namespace hylo::io
+}  // namespace hylo::tiles

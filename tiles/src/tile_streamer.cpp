@@ -1,5 +1,5 @@
 // The background loader of a tiled prior (tile_streamer.h).
-#include "hylo/mapping/tile_streamer.h"
+#include "hylo/tiles/tile_streamer.h"
 
 #include <time.h>
 
@@ -10,7 +10,7 @@
 #include "hylo/common/check.h"
 #include "hylo/common/option_checks.h"
 
-namespace hylo::mapping {
+namespace hylo::tiles {
 namespace {
 
 double ThreadCpuS() {
@@ -193,4 +193,4 @@ void TileStreamer::Publish() {
   }
 }
 
-}  // namespace hylo::mapping
+}  // namespace hylo::tiles

@@ -1,6 +1,6 @@
 // Tiles of a prior map: the grid, a fixed set of loaded tiles and the on-demand cache
 // (tiles.h), with the exact search they share (tile_search.h).
-#include "hylo/mapping/tiles.h"
+#include "hylo/tiles/tiles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "hylo/common/voxel_key.h"
 #include "tile_search.h"
 
-namespace hylo::mapping {
+namespace hylo::tiles {
 namespace internal {
 
 void MergeNearest(const std::vector<registration::Neighbor>& more, int k,
@@ -91,7 +91,7 @@ bool IsWholeMultiple(double tile_size_m, double voxel_m) {
 }
 
 LoadedTile BuildTile(const TileInfo& info, const PointCloud& points_local) {
-  auto tree = std::make_shared<IkdTree>();
+  auto tree = std::make_shared<mapping::IkdTree>();
   tree->Build(points_local);
   LoadedTile tile;
   tile.info = info;
@@ -147,7 +147,7 @@ TileCache::TileCache(std::shared_ptr<const TileSource> source, std::size_t max_p
   for (const TileInfo& t : source_->tiles()) total_points_ += t.points;
 }
 
-const IkdTree* TileCache::Get(int index) const {
+const mapping::IkdTree* TileCache::Get(int index) const {
   const TileInfo& info = source_->tiles()[static_cast<std::size_t>(index)];
   for (std::size_t i = 0; i < cached_.size(); ++i) {
     if (cached_[i].info.key != info.key) continue;
@@ -184,7 +184,7 @@ void TileCache::KNearestPreferring(const TileSet* preferred, const Eigen::Vector
   internal::GridKNearest(
       grid_, lookup_, query, k, max_distance,
       [&tiles](int i) -> const TileInfo& { return tiles[static_cast<std::size_t>(i)]; },
-      [&](int i) -> const IkdTree* {
+      [&](int i) -> const mapping::IkdTree* {
         const LoadedTile* held = preferred == nullptr
                                      ? nullptr
                                      : preferred->Find(tiles[static_cast<std::size_t>(i)].key);
@@ -193,4 +193,4 @@ void TileCache::KNearestPreferring(const TileSet* preferred, const Eigen::Vector
       neighbors);
 }
 
-}  // namespace hylo::mapping
+}  // namespace hylo::tiles
