@@ -32,10 +32,10 @@
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/cloud_stream.h"
 #include "hylo/io/json.h"
-#include "hylo/tiles/tiled_map.h"
 #include "hylo/io/trajectory_io.h"
-#include "hylo/tiles/tiles.h"
 #include "hylo/sim_io/session_writer.h"
+#include "hylo/tiles/tiled_map.h"
+#include "hylo/tiles/tiles.h"
 #include "measured_child.h"
 #include "repeated_site.h"
 

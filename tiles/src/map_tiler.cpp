@@ -16,9 +16,9 @@
 #include "hylo/common/voxel_key.h"
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/cloud_stream.h"
+#include "hylo/registration/voxel_filter.h"
 #include "hylo/tiles/tiled_map.h"
 #include "hylo/tiles/tiles.h"
-#include "hylo/registration/voxel_filter.h"
 
 namespace hylo::tiles {
 namespace {
