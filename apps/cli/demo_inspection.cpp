@@ -22,7 +22,8 @@ io::Json InspectionStep::ToJson() const {
   io::Json& missed = j["not_planned"] = io::Json::array();
   for (const io::Json& t : plan.value("per_target", io::Json::array())) {
     if (t.at("status") != "planned") {
-      missed.push_back({{"id", t.at("id")}, {"status", t.at("status")}, {"reason", t.at("reason")}});
+      missed.push_back(
+          {{"id", t.at("id")}, {"status", t.at("status")}, {"reason", t.at("reason")}});
     }
   }
   return j;
@@ -40,14 +41,14 @@ InspectionStep InspectSite(const sim::Site& site, const evaluation::AteResult& a
   std::filesystem::create_directories(dir);
   // The map's frame is session A's: its alignment places the site's equipment in it.
   const Eigen::Isometry3d T_map_site = ate_a.T_reference_estimate.inverse();
-  io::WriteTargetsCsv(step.targets_csv,
-                      sim::EquipmentAsTargets(sim::EquipmentTargets(site, sim::SessionId::kA),
-                                              T_map_site));
+  io::WriteTargetsCsv(
+      step.targets_csv,
+      sim::EquipmentAsTargets(sim::EquipmentTargets(site, sim::SessionId::kA), T_map_site));
   const run::InspectionInputs inputs =
       run::ReadInspectionInputs(crafted_map, costmap_dir, step.targets_csv);
   // The route starts where session A started, the map frame's origin (`hylo inspect`'s default).
-  const run::InspectionRun plan = run::PlanInspectionRun(inputs, Eigen::Vector2d::Zero(),
-                                                         inspection::InspectionOptions());
+  const run::InspectionRun plan =
+      run::PlanInspectionRun(inputs, Eigen::Vector2d::Zero(), inspection::InspectionOptions());
   run::WriteInspectionRun(dir, inputs, plan);
   step.plan = plan.summary;
   step.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

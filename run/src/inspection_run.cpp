@@ -27,8 +27,9 @@ inspection::InspectionOptions WithOverrides(inspection::InspectionOptions o,
 
 InspectionInputs ReadInspectionInputs(const std::string& map_path, const std::string& costmap_dir,
                                       const std::string& targets_path) {
-  InspectionInputs in{map_path, costmap_dir, targets_path, io::ReadCostmapLayers(costmap_dir),
-                      {}, io::ReadTargets(targets_path)};
+  InspectionInputs in{map_path,     costmap_dir,
+                      targets_path, io::ReadCostmapLayers(costmap_dir),
+                      {},           io::ReadTargets(targets_path)};
   for (inspection::Target& t : in.targets_local) t.position -= in.origin_world();
   const io::CloudFile map = io::ReadCloud(map_path);
   if (map.positions.empty()) throw std::runtime_error(map_path + ": the map has no point");
@@ -50,8 +51,8 @@ InspectionRun PlanInspectionRun(const InspectionInputs& in, const Eigen::Vector2
                   start_map.y());
     throw InspectionStartError(where + std::string(e.what()));
   }
-  run.summary = io::InspectionPlanJson(run.plan, in.targets_local, in.costmap.grid.geometry(),
-                                       options);
+  run.summary =
+      io::InspectionPlanJson(run.plan, in.targets_local, in.costmap.grid.geometry(), options);
   run.summary["map"] = in.map_path;
   run.summary["costmap"] = in.costmap_dir;
   run.summary["targets_file"] = in.targets_path;

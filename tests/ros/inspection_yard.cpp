@@ -24,8 +24,9 @@ InspectionYard WriteInspectionYard(const std::string& dir, const Eigen::Vector3d
   map.positions = ground;
   map.positions.insert(map.positions.end(), wall.begin(), wall.end());
   io::WriteCloud(yard.map, map);
-  io::WriteTraversabilityFiles(yard.costmap_dir, terrain::ComputeTraversability(
-                                                     ground, wall, terrain::TraversabilityOptions()));
+  io::WriteTraversabilityFiles(
+      yard.costmap_dir,
+      terrain::ComputeTraversability(ground, wall, terrain::TraversabilityOptions()));
   std::ofstream targets(yard.targets);
   targets.precision(12);
   targets << "id,x,y,z\n"

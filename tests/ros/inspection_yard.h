@@ -10,7 +10,7 @@
 namespace hylo::testing {
 
 struct InspectionYard {
-  std::string map, costmap_dir, targets;  ///< crafted map, costmap folder, targets CSV
+  std::string map, costmap_dir, targets;             ///< crafted map, costmap folder, targets CSV
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();  ///< added to every coordinate, m
 };
 

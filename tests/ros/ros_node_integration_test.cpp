@@ -1,6 +1,6 @@
-// End to end through ROS: a real roscore on loopback, a simulator bag played to ROS topics (bag_player.h),
-// hylo_node, and this test as a ROS client (ros_graph.h). SLAM: the odometry's ATE after
-// SE(3) alignment and the REP-105 tree map → odom → base_link. Localization: a prior map
+// End to end through ROS: a real roscore on loopback, a simulator bag played to ROS topics
+// (bag_player.h), hylo_node, and this test as a ROS client (ros_graph.h). SLAM: the odometry's ATE
+// after SE(3) alignment and the REP-105 tree map → odom → base_link. Localization: a prior map
 // moved to UTM-like coordinates, the odometry compared with the truth *without* alignment
 // (the published map frame is the file's), and a relocalization requested through the
 // service mid-run. The inspection service's Path against `hylo inspect`'s route. Skipped,
@@ -334,10 +334,10 @@ TEST_F(RosNodeIntegration, PlanInspectionReturnsTheCommandsRouteAsPath) {
   const Eigen::Vector3d offset(1000.0, 2000.0, 50.0);
   const hylo::testing::InspectionYard yard =
       hylo::testing::WriteInspectionYard(dir_ + "/yard", offset);
-  ChildProcess inspect({std::string(HYLO_BINARY_DIR) + "/apps/hylo", "inspect", "--map", yard.map,
-                        "--costmap", yard.costmap_dir, "--targets", yard.targets, "--start",
-                        "1002 2002", "--out", dir_ + "/cli"},
-                       dir_ + "/inspect.log");
+  ChildProcess inspect(
+      {std::string(HYLO_BINARY_DIR) + "/apps/hylo", "inspect", "--map", yard.map, "--costmap",
+       yard.costmap_dir, "--targets", yard.targets, "--start", "1002 2002", "--out", dir_ + "/cli"},
+      dir_ + "/inspect.log");
   const std::optional<int> code = inspect.Wait(seconds(60));
   ASSERT_TRUE(code && *code == 0) << Tail(dir_ + "/inspect.log");
   const std::vector<Eigen::Vector2d> cli_route = ReadRouteCsv(dir_ + "/cli/route.csv");
@@ -345,10 +345,10 @@ TEST_F(RosNodeIntegration, PlanInspectionReturnsTheCommandsRouteAsPath) {
 
   std::string error;
   ASSERT_TRUE(graph_->StartMaster(dir_, &error)) << error;
-  ASSERT_TRUE(graph_->StartNode({"_config:=" + kConfig, "_inspection_map:=" + yard.map,
-                                 "_inspection_costmap:=" + yard.costmap_dir,
-                                 "_inspection_targets:=" + yard.targets},
-                                &error))
+  ASSERT_TRUE(graph_->StartNode(
+      {"_config:=" + kConfig, "_inspection_map:=" + yard.map,
+       "_inspection_costmap:=" + yard.costmap_dir, "_inspection_targets:=" + yard.targets},
+      &error))
       << error;
   ASSERT_TRUE(ros::service::waitForService("/hylo_node/plan_inspection", ros::Duration(20.0)))
       << graph_->NodeLog();

@@ -89,13 +89,13 @@ py::dict Inspect(const InspectArgs& args, py::object progress) {
       return run::ReadInspectionInputs(args.map, args.costmap, args.targets);
     });
     // Not a file error: a start off the free space, invalid targets, options (ValueError).
-    plan = run::PlanInspectionRun(*inputs, start_map, options,
-                                  [&](const std::string&, std::size_t done, std::size_t total) {
-                                    relay(done, total);
-                                  });
+    plan = run::PlanInspectionRun(
+        *inputs, start_map, options,
+        [&](const std::string&, std::size_t done, std::size_t total) { relay(done, total); });
     relay.Flush();
     if (!args.out_dir.empty()) {
-      files = ReadingFiles({}, [&] { return run::WriteInspectionRun(args.out_dir, *inputs, plan); });
+      files =
+          ReadingFiles({}, [&] { return run::WriteInspectionRun(args.out_dir, *inputs, plan); });
     }
   }
   py::dict out;

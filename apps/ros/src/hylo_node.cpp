@@ -3,9 +3,9 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "hylo/logs/ros_bridge.h"
 #include "hylo/lie/isometry.h"
 #include "hylo/localization/pose_guess.h"
+#include "hylo/logs/ros_bridge.h"
 #include "hylo/run/prior_map_io.h"
 #include "ros_messages.h"
 

@@ -38,8 +38,8 @@ class InspectionService {
  public:
   /// Reads the inputs; throws std::runtime_error naming the file when one cannot be used, and
   /// std::invalid_argument for invalid options.
-  InspectionService(const std::string& map, const std::string& costmap,
-                    const std::string& targets, const inspection::InspectionOptions& options);
+  InspectionService(const std::string& map, const std::string& costmap, const std::string& targets,
+                    const inspection::InspectionOptions& options);
 
   /// Plans from `start_map`; false with *why when the planner refuses (a start off the free
   /// space). A one-line summary of the plan goes to *summary.

@@ -10,11 +10,12 @@ bool NodeParams::IsValid(std::string* why) const {
     *why = "~config is empty: the run configuration YAML is required";
     return false;
   }
-  const int inspection_inputs = !inspection_map.empty() + !inspection_costmap.empty() +
-                                !inspection_targets.empty();
+  const int inspection_inputs =
+      !inspection_map.empty() + !inspection_costmap.empty() + !inspection_targets.empty();
   if (inspection_inputs != 0 && inspection_inputs != 3) {
-    *why = "~inspection_map, ~inspection_costmap and ~inspection_targets go together (all three "
-           "for ~plan_inspection, or none)";
+    *why =
+        "~inspection_map, ~inspection_costmap and ~inspection_targets go together (all three "
+        "for ~plan_inspection, or none)";
     return false;
   }
   std::string sub;

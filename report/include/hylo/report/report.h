@@ -34,7 +34,7 @@ struct ReportContent {
   std::vector<PlotFile> plots;   ///< figures, in order
   std::string costmap_png;       ///< the costmap image; empty = none
   std::string costmap_caption;   ///< its legend
-  std::vector<ImageSection> sections;  ///< after the costmap, in order
+  std::vector<ImageSection> sections;                           ///< after the costmap, in order
   std::vector<std::pair<std::string, std::string>> parameters;  ///< name, value (with unit)
   std::vector<OutputFile> files;                                ///< the run's outputs
 };
