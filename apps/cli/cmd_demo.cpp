@@ -4,10 +4,11 @@
 //   2. SLAM on A with the IESKF -> the raw prior map (every registered scan);
 //   3. craft it (uniform sampling + MLS), extract the ground (the configuration's ground
 //      method, SMRF by default), build the costmap;
-//   4. localize B in the crafted map from a rough guess, hybrid mode, with each back-end
+//   4. plan the inspection of session A's equipment on the crafted map (`hylo inspect`);
+//   5. localize B in the crafted map from a rough guess, hybrid mode, with each back-end
 //      (each in its own process, backend_runs.h);
-//   5. evaluate (ATE/RPE against B's truth, c2c to the prior) and draw the figures;
-//   6. write summary.json and report.md, print the table and the report's path.
+//   6. evaluate (ATE/RPE against B's truth, c2c to the prior) and draw the figures;
+//   7. write summary.json and report.md, print the table and the report's path.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,6 +18,7 @@
 
 #include "backend_runs.h"
 #include "commands.h"
+#include "demo_inspection.h"
 #include "demo_report.h"
 #include "demo_setup.h"
 #include "hylo/evaluation/trajectory_metrics.h"
@@ -42,7 +44,7 @@ struct DemoArgs {
 class Steps {
  public:
   void Start(const std::string& what) {
-    std::printf("\n== [%d/6 %5.1f s] %s\n", ++index_, Elapsed(), what.c_str());
+    std::printf("\n== [%d/7 %5.1f s] %s\n", ++index_, Elapsed(), what.c_str());
     std::fflush(stdout);
   }
   double Elapsed() const {
@@ -83,8 +85,8 @@ sim::SimulationOptions SimulationFor(const DemoArgs& args) {
   return options;
 }
 
-io::Json Simulate(const sim::SimulationOptions& options, const std::string& dir) {
-  const sim::Site site = sim::BuildSite(options.seed, options.terrain);
+io::Json Simulate(const sim::SimulationOptions& options, const sim::Site& site,
+                  const std::string& dir) {
   io::Json sessions = io::Json::array();
   for (const sim::SessionId id : {sim::SessionId::kA, sim::SessionId::kB}) {
     const sim::SessionSummary s = sim::WriteSession(options, site, id, dir);
@@ -132,7 +134,8 @@ void RunDemo(const DemoArgs& args) {
   config::RunConfig config = ConfigForSimulation(s.sim);
 
   steps.Start("simulate sessions A and B of the substation (VLP-16 + 200 Hz IMU)");
-  s.simulation = Simulate(s.sim, p.sim_dir);
+  const sim::Site site = sim::BuildSite(s.sim.seed, s.sim.terrain);
+  s.simulation = Simulate(s.sim, site, p.sim_dir);
 
   steps.Start("SLAM on session A with the IESKF: the raw prior map");
   const evaluation::AteResult ate_a = SlamSessionA(p, config, &s.slam);
@@ -151,6 +154,16 @@ void RunDemo(const DemoArgs& args) {
   std::printf("  costmap %d x %d cells: %zu free, %zu cost, %zu lethal, %zu unknown\n",
               s.traversability.width, s.traversability.height, s.traversability.cells[1],
               s.traversability.cells[2], s.traversability.cells[3], s.traversability.cells[0]);
+
+  steps.Start("plan the inspection of session A's equipment (hylo inspect)");
+  s.inspection = InspectSite(site, ate_a, p.crafted_map, p.costmap_dir, p.inspection_dir);
+  {
+    const io::Json& t = s.inspection.plan.at("targets");
+    std::printf("  %d of %d targets planned (%d occluded, %d unreachable), route %.1f m (%.1f s)\n",
+                t.value("planned", 0), t.value("total", 0), t.value("occluded", 0),
+                t.value("unreachable", 0), io::NumberAt(s.inspection.plan, "route.length_m"),
+                s.inspection.seconds);
+  }
 
   steps.Start(
       "localize session B in the crafted map from a rough guess, hybrid mode, "

@@ -6,20 +6,16 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "commands.h"
-#include "hylo/common/local_origin.h"
 #include "hylo/config/run_config.h"
-#include "hylo/inspection/planner.h"
-#include "hylo/io/cloud_io.h"
-#include "hylo/io/costmap_io.h"
-#include "hylo/io/inspection_io.h"
 #include "hylo/io/progress.h"
-#include "hylo/io/targets_io.h"
 #include "hylo/io/text.h"
+#include "hylo/run/inspection_run.h"
 
 namespace hylo::cli {
 namespace {
@@ -41,21 +37,22 @@ struct InspectArgs {
 };
 
 inspection::InspectionOptions Options(const InspectArgs& a) {
-  inspection::InspectionOptions o =
+  const inspection::InspectionOptions configured =
       a.config_path.empty() ? inspection::InspectionOptions()
                             : config::LoadRunConfig(a.config_path).inspection;
-  const auto given = [&](const char* flag) { return a.cmd->count(flag) > 0; };
-  inspection::VisibilityOptions& v = o.visibility;
-  if (given("--camera-height")) v.camera_height_m = a.camera_height_m;
-  if (given("--min-range")) v.min_range_m = a.min_range_m;
-  if (given("--max-range")) v.max_range_m = a.max_range_m;
-  if (given("--clearance")) v.occupancy.clearance_m = a.clearance_m;
-  if (given("--voxel")) v.occupancy.voxel_size_m = a.voxel_m;
-  if (given("--robot-radius")) o.search.robot_radius_m = a.robot_radius_m;
-  if (a.no_return) o.tour.return_to_start = false;
-  std::string why;
-  if (!o.IsValid(&why)) throw std::invalid_argument("options: " + why);
-  return o;
+  // CLI11 counts the flags given: only those override the configuration.
+  const auto given = [&](const char* flag, double value) {
+    return a.cmd->count(flag) > 0 ? std::optional<double>(value) : std::nullopt;
+  };
+  run::InspectionOverrides o;
+  o.camera_height_m = given("--camera-height", a.camera_height_m);
+  o.min_range_m = given("--min-range", a.min_range_m);
+  o.max_range_m = given("--max-range", a.max_range_m);
+  o.clearance_m = given("--clearance", a.clearance_m);
+  o.voxel_m = given("--voxel", a.voxel_m);
+  o.robot_radius_m = given("--robot-radius", a.robot_radius_m);
+  if (a.no_return) o.return_to_start = false;
+  return run::WithOverrides(configured, o);
 }
 
 // "x y" in the map frame; the map frame's origin when empty.
@@ -92,17 +89,13 @@ void PrintPlan(const inspection::InspectionPlan& plan, const std::vector<inspect
 void Run(const InspectArgs& args) {
   const inspection::InspectionOptions options = Options(args);
   const Eigen::Vector2d start_map = ParseStart(args.start);
-  std::fprintf(stderr, "reading costmap %s\n", args.costmap_dir.c_str());
-  const io::CostmapLayers costmap = io::ReadCostmapLayers(args.costmap_dir);
-  const Eigen::Vector3d origin = costmap.grid.geometry().origin_world;
-  std::vector<inspection::Target> targets = io::ReadTargets(args.targets_path);
-  for (inspection::Target& t : targets) t.position -= origin;
-  std::fprintf(stderr, "reading map %s\n", args.map_path.c_str());
-  const io::CloudFile map = io::ReadCloud(args.map_path);
-  if (map.positions.empty()) throw std::runtime_error(args.map_path + ": the map has no point");
-  const PointCloud map_local = ToLocal(map.positions, origin);
-  std::fprintf(stderr, "planning %zu targets on %d x %d cells, %zu map points\n", targets.size(),
-               costmap.grid.geometry().width, costmap.grid.geometry().height, map_local.size());
+  std::fprintf(stderr, "reading %s, %s and %s\n", args.costmap_dir.c_str(),
+               args.targets_path.c_str(), args.map_path.c_str());
+  const run::InspectionInputs inputs =
+      run::ReadInspectionInputs(args.map_path, args.costmap_dir, args.targets_path);
+  const terrain::GridGeometry& g = inputs.costmap.grid.geometry();
+  std::fprintf(stderr, "planning %zu targets on %d x %d cells, %zu map points\n",
+               inputs.targets_local.size(), g.width, g.height, inputs.map_local.size());
   std::unique_ptr<io::Progress> progress;
   std::string stage;
   const auto on_progress = [&](const std::string& name, std::size_t done, std::size_t total) {
@@ -112,26 +105,18 @@ void Run(const InspectArgs& args) {
     }
     progress->Update(done);
   };
-  inspection::InspectionPlan plan;
+  run::InspectionRun plan;
   try {
-    plan = inspection::PlanInspection(map_local, costmap.grid, costmap.classes, targets,
-                                      start_map - origin.head<2>(), options, on_progress);
-  } catch (const inspection::StartNotPassable& e) {
-    char where[96];
-    std::snprintf(where, sizeof(where), "start (%.3f, %.3f) in the map frame: ", start_map.x(),
-                  start_map.y());
-    throw std::runtime_error(where + std::string(e.what()) + " (give --start \"x y\")");
+    plan = run::PlanInspectionRun(inputs, start_map, options, on_progress);
+  } catch (const run::InspectionStartError& e) {
+    throw std::runtime_error(e.what() + std::string(" (give --start \"x y\")"));
   }
   progress.reset();
-  io::Json summary = io::InspectionPlanJson(plan, targets, costmap.grid.geometry(), options);
-  summary["map"] = args.map_path;
-  summary["costmap"] = args.costmap_dir;
-  summary["targets_file"] = args.targets_path;
-  const std::vector<std::string> files =
-      io::WriteInspectionFiles(args.out_dir, plan, targets, costmap, summary);
-  PrintPlan(plan, targets);
+  const std::vector<std::string> files = run::WriteInspectionRun(args.out_dir, inputs, plan);
+  PrintPlan(plan.plan, inputs.targets_local);
   std::printf("wrote %zu files to %s\n", files.size(), args.out_dir.c_str());
   if (!args.json_path.empty()) {
+    io::Json summary = plan.summary;
     for (const std::string& f : files) summary["outputs"].push_back(f);
     MaybeWriteJson(args.json_path, summary);
   }

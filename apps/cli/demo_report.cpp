@@ -36,6 +36,7 @@ io::Json SummaryJson(const DemoPaths& p, const DemoSummary& s, const std::vector
   j["craft"] = s.craft.ToJson();
   j["ground"] = s.ground.ToJson();
   j["traversability"] = s.traversability.ToJson();
+  j["inspection"] = s.inspection.ToJson();
   io::Json& loc = j["localization_b"];
   loc["guess_error"]["translation_m"] = s.guess_error.translation_m;
   loc["guess_error"]["yaw_deg"] = s.guess_error.yaw_deg;
@@ -112,12 +113,40 @@ std::vector<report::OutputFile> Files(const DemoPaths& p, const std::vector<Back
       {"SLAM on session A: trajectory, map.pcd, map_dense.pcd, timing, summary", p.slam_dir},
       {"crafted prior map, ground and object clouds", p.map_dir},
       {"costmap: map_server PGM + YAML, PNG, one ESRI ASCII grid per layer", p.costmap_dir},
+      {"inspection of the equipment (`hylo inspect`): targets.csv, plan.csv, route.csv, "
+       "visibility/, plan.png, summary.json",
+       p.inspection_dir},
       {"effective configuration of the localization runs", p.localize_config}};
   for (const BackendRun& run : runs) {
     files.push_back({run.row.backend + " on session B: trajectory, map, timing, summary", run.dir});
   }
   files.push_back({"plot data and gnuplot scripts (redraw with `gnuplot <name>.gp`)", p.plot_dir});
   return files;
+}
+
+report::ImageSection InspectionSection(const DemoSummary& s) {
+  const io::Json& plan = s.inspection.plan;
+  const auto count = [&](const char* key) {
+    return std::to_string(plan.at("targets").value(key, 0));
+  };
+  report::ImageSection section;
+  section.title = "Inspection plan";
+  section.text =
+      "`hylo inspect` on the crafted map and its costmap: the targets are session A's equipment "
+      "(insulator fittings, transformer tanks and bushings, pole tops, the building's "
+      "air-conditioning unit, containers, sheds, drums, vehicles), taken into the map's frame "
+      "with session A's alignment to the truth; the route starts where session A started. " +
+      count("planned") + " of " + count("total") + " targets planned, " + count("occluded") +
+      " occluded, " + count("unreachable") + " unreachable; route " +
+      Fixed(io::NumberAt(plan, "route.length_m"), 1) + " m through " +
+      std::to_string(plan.at("route").value("stops", 0)) + " stops; " +
+      Fixed(s.inspection.seconds, 1) + " s.";
+  section.image = s.inspection.dir + "/plan.png";
+  section.caption =
+      "Blue: the route; white squares: viewpoints, with their sight lines; crosses: targets "
+      "(cyan planned, magenta occluded, orange unreachable); blue square: the start. Why each "
+      "target was not planned: `inspection/plan.csv`.";
+  return section;
 }
 
 }  // namespace
@@ -137,6 +166,7 @@ DemoPaths MakeDemoPaths(const std::string& dir) {
   p.objects = p.map_dir + "/objects.pcd";
   p.costmap_dir = dir + "/costmap";
   p.costmap_png = p.costmap_dir + "/costmap.png";
+  p.inspection_dir = dir + "/inspection";
   p.localize_config = dir + "/localize_b.yaml";
   p.localize_dir = dir + "/localize_b";
   p.plot_dir = dir + "/plots";
@@ -169,6 +199,7 @@ void WriteDemoOutputs(const DemoPaths& p, const DemoSummary& s, const std::vecto
       std::to_string(n[1]) + " free, " + std::to_string(n[2]) + " cost, " + std::to_string(n[3]) +
       " lethal, " + std::to_string(n[0]) + " unknown at " +
       Fixed(s.traversability.resolution_m, 2) + " m.";
+  c.sections.push_back(InspectionSection(s));
   c.parameters = Parameters(s);
   c.files = Files(p, runs);
   report::WriteReport(p.report, c);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "backend_runs.h"
+#include "demo_inspection.h"
 #include "demo_setup.h"
 #include "hylo/io/json.h"
 #include "hylo/report/plots.h"
@@ -22,6 +23,7 @@ struct DemoPaths {
   std::string slam_dir;                               ///< SLAM on A (RunLog outputs)
   std::string map_dir, crafted_map, ground, objects;  ///< crafted prior map, ground split
   std::string costmap_dir, costmap_png;
+  std::string inspection_dir;                 ///< `hylo inspect` outputs for the equipment
   std::string localize_config, localize_dir;  ///< B, one sub-folder per back-end
   std::string plot_dir, summary, report;
 };
@@ -36,6 +38,7 @@ struct DemoSummary {
   CraftStep craft;
   GroundStep ground;
   TraversabilityStep traversability;
+  InspectionStep inspection;
   GuessError guess_error;       ///< how far the initial guess of B is from the truth
   double hybrid_after_s = 5.0;  ///< localization.update_after_s of the localization runs, s
   Eigen::Isometry3d guess_world_imu = Eigen::Isometry3d::Identity();  ///< the guess used

@@ -1,5 +1,5 @@
 // report.md from a ReportContent: headings, the table, figures (or why each is missing),
-// parameters and files.
+// image sections, parameters and files.
 #include "hylo/report/report.h"
 
 #include <filesystem>
@@ -49,6 +49,19 @@ void WriteCostmap(const ReportContent& c, const std::string& dir, std::ostringst
   if (!c.costmap_caption.empty()) *md << c.costmap_caption << "\n\n";
 }
 
+void WriteSections(const ReportContent& c, const std::string& dir, std::ostringstream* md) {
+  for (const ImageSection& s : c.sections) {
+    *md << "## " << s.title << "\n\n";
+    if (!s.text.empty()) *md << s.text << "\n\n";
+    if (!s.image.empty() && fs::exists(s.image)) {
+      *md << "![" << s.title << "](" << Link(Relative(s.image, dir)) << ")\n\n";
+    } else if (!s.image.empty()) {
+      *md << "*Image missing: `" << s.image << "` was not written.*\n\n";
+    }
+    if (!s.caption.empty()) *md << s.caption << "\n\n";
+  }
+}
+
 void WriteParameters(const ReportContent& c, std::ostringstream* md) {
   if (c.parameters.empty()) return;
   *md << "## Parameters\n\n| parameter | value |\n|---|---|\n";
@@ -76,6 +89,7 @@ std::string RenderMarkdown(const ReportContent& content, const std::string& repo
   if (!content.table_caption.empty()) md << content.table_caption << "\n\n";
   WriteFigures(content, report_dir, &md);
   WriteCostmap(content, report_dir, &md);
+  WriteSections(content, report_dir, &md);
   WriteParameters(content, &md);
   WriteFiles(content, report_dir, &md);
   return md.str();

@@ -4,6 +4,7 @@
 // ctest (one process per test) runs the demo once.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -68,6 +69,29 @@ void CheckReportAndImages(const std::string& run) {
   }
 }
 
+// The inspection step: session A's equipment planned on the crafted map. Most targets lie in
+// the mapped yard and must be planned; the route returns to its start; the files of `hylo
+// inspect` are there, one plan.csv row per target.
+void CheckInspection(const io::Json& summary, const std::string& run) {
+  const double total = io::NumberAt(summary, "inspection.plan_targets.total");
+  const double planned = io::NumberAt(summary, "inspection.plan_targets.planned");
+  EXPECT_GE(total, 30.0);
+  EXPECT_GE(planned, 0.8 * total);
+  EXPECT_EQ(planned + io::NumberAt(summary, "inspection.plan_targets.occluded") +
+                io::NumberAt(summary, "inspection.plan_targets.unreachable"),
+            total);
+  EXPECT_EQ(summary.at("inspection").at("not_planned").size(), total - planned);
+  EXPECT_GT(io::NumberAt(summary, "inspection.plan_route.length_m"), 100.0);
+  EXPECT_LT(io::NumberAt(summary, "inspection.seconds"), 30.0);
+  const std::string plan_csv = ReadText(run + "/inspection/plan.csv");
+  EXPECT_EQ(static_cast<double>(std::count(plan_csv.begin(), plan_csv.end(), '\n')), total + 1);
+  EXPECT_NE(plan_csv.find("transformer_1_tank,planned,"), std::string::npos) << plan_csv;
+  EXPECT_TRUE(report::IsPngFile(run + "/inspection/plan.png"));
+  EXPECT_TRUE(fs::exists(run + "/inspection/route.csv"));
+  EXPECT_NE(ReadText(run + "/report.md").find("![Inspection plan](inspection/plan.png)"),
+            std::string::npos);
+}
+
 TEST(DemoQuickTest, FiguresWithinBoundsReportAndImagesWritten) {
   const std::string out = testing::ScratchDir("demo_quick");
   const int status =
@@ -84,6 +108,7 @@ TEST(DemoQuickTest, FiguresWithinBoundsReportAndImagesWritten) {
   EXPECT_GT(io::NumberAt(summary, "traversability.cells.free"), 100.0);
   EXPECT_GT(io::NumberAt(summary, "traversability.cells.lethal"), 100.0);
   CheckLocalization(summary);
+  CheckInspection(summary, run);
   CheckReportAndImages(run);
 }
 

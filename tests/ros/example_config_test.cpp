@@ -26,7 +26,8 @@ TEST(ExampleConfig, LaunchFileSetsEveryNodeParameterItDeclares) {
   ASSERT_TRUE(in.good());
   std::stringstream text;
   text << in.rdbuf();
-  for (const char* param : {"config", "prior_map", "initial_guess", "costmap", "save_map_path"}) {
+  for (const char* param : {"config", "prior_map", "initial_guess", "costmap", "inspection_map",
+                            "inspection_costmap", "inspection_targets", "save_map_path"}) {
     EXPECT_NE(text.str().find("<param name=\"" + std::string(param) + "\""), std::string::npos)
         << param;
   }

@@ -1,11 +1,13 @@
-// End to end through ROS: a real roscore on loopback, a simulator bag played to ROS topics (bag_player.h),
-// hylo_node, and this test as a ROS client (ros_graph.h). SLAM: the odometry's ATE after
-// SE(3) alignment and the REP-105 tree map → odom → base_link. Localization: a prior map
+// End to end through ROS: a real roscore on loopback, a simulator bag played to ROS topics
+// (bag_player.h), hylo_node, and this test as a ROS client (ros_graph.h). SLAM: the odometry's ATE
+// after SE(3) alignment and the REP-105 tree map → odom → base_link. Localization: a prior map
 // moved to UTM-like coordinates, the odometry compared with the truth *without* alignment
 // (the published map frame is the file's), and a relocalization requested through the
-// service mid-run. Skipped, visibly, when roscore is missing.
+// service mid-run. The inspection service's Path against `hylo inspect`'s route. Skipped,
+// visibly, when roscore is missing.
 
 #include <gtest/gtest.h>
+#include <nav_msgs/GetPlan.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <nav_msgs/SetMap.h>
 #include <ros/topic.h>
@@ -15,11 +17,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <sstream>
 
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/costmap_io.h"
 #include "hylo/logs/ros_bridge.h"
+#include "inspection_yard.h"
 #include "ros_graph.h"
 #include "ros_messages.h"
 #include "test_data.h"
@@ -308,6 +312,65 @@ TEST_F(RosNodeIntegration, StartsGloballyAndSearchesAgainOnRequest) {
       "frame rmse %.4f m, max %.4f m\n",
       c.odometry.size(), before_request, ate.rmse_m, ate.max_m);
   EXPECT_LT(ate.max_m, 2 * kLocalizationErrorBoundM);
+}
+
+/// route.csv's x, y columns.
+std::vector<Eigen::Vector2d> ReadRouteCsv(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);  // header
+  std::vector<Eigen::Vector2d> route;
+  while (std::getline(in, line)) {
+    Eigen::Vector2d xy;
+    if (std::sscanf(line.c_str(), "%lf,%lf", &xy.x(), &xy.y()) == 2) route.push_back(xy);
+  }
+  return route;
+}
+
+// ~plan_inspection through ROS: the nav_msgs/Path a GetPlan call returns is `hylo inspect`'s
+// route.csv for the same files and start, in the map frame; a start in another frame, or an
+// empty frame (the current pose) before the node has a pose, is refused.
+TEST_F(RosNodeIntegration, PlanInspectionReturnsTheCommandsRouteAsPath) {
+  const Eigen::Vector3d offset(1000.0, 2000.0, 50.0);
+  const hylo::testing::InspectionYard yard =
+      hylo::testing::WriteInspectionYard(dir_ + "/yard", offset);
+  ChildProcess inspect(
+      {std::string(HYLO_BINARY_DIR) + "/apps/hylo", "inspect", "--map", yard.map, "--costmap",
+       yard.costmap_dir, "--targets", yard.targets, "--start", "1002 2002", "--out", dir_ + "/cli"},
+      dir_ + "/inspect.log");
+  const std::optional<int> code = inspect.Wait(seconds(60));
+  ASSERT_TRUE(code && *code == 0) << Tail(dir_ + "/inspect.log");
+  const std::vector<Eigen::Vector2d> cli_route = ReadRouteCsv(dir_ + "/cli/route.csv");
+  ASSERT_GE(cli_route.size(), 4u);
+
+  std::string error;
+  ASSERT_TRUE(graph_->StartMaster(dir_, &error)) << error;
+  ASSERT_TRUE(graph_->StartNode(
+      {"_config:=" + kConfig, "_inspection_map:=" + yard.map,
+       "_inspection_costmap:=" + yard.costmap_dir, "_inspection_targets:=" + yard.targets},
+      &error))
+      << error;
+  ASSERT_TRUE(ros::service::waitForService("/hylo_node/plan_inspection", ros::Duration(20.0)))
+      << graph_->NodeLog();
+  nav_msgs::GetPlan plan;
+  plan.request.start.header.frame_id = "map";
+  plan.request.start.pose.position.x = 1002.0;
+  plan.request.start.pose.position.y = 2002.0;
+  ASSERT_TRUE(ros::service::call("/hylo_node/plan_inspection", plan)) << graph_->NodeLog();
+  EXPECT_EQ(plan.response.plan.header.frame_id, "map");
+  ASSERT_EQ(plan.response.plan.poses.size(), cli_route.size());
+  for (std::size_t i = 0; i < cli_route.size(); ++i) {
+    const geometry_msgs::Point& p = plan.response.plan.poses[i].pose.position;
+    EXPECT_NEAR(p.x, cli_route[i].x(), 1e-3) << i;  // route.csv has millimetres
+    EXPECT_NEAR(p.y, cli_route[i].y(), 1e-3) << i;
+  }
+  nav_msgs::GetPlan other_frame = plan;
+  other_frame.request.start.header.frame_id = "odom";
+  EXPECT_FALSE(ros::service::call("/hylo_node/plan_inspection", other_frame));
+  nav_msgs::GetPlan current_pose;  // empty frame_id: no bag played, so no pose yet
+  EXPECT_FALSE(ros::service::call("/hylo_node/plan_inspection", current_pose));
+  EXPECT_TRUE(graph_->NodeAlive()) << graph_->NodeLog();
+  EXPECT_NE(graph_->NodeLog().find("no valid pose yet"), std::string::npos) << graph_->NodeLog();
 }
 
 }  // namespace

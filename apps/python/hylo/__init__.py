@@ -5,6 +5,7 @@
     print(result.summary["path_length_m"], result.trajectory[-1])    # t x y z qx qy qz qw
     errors = hylo.eval.ate(result, "session_a_truth.tum")
     ground = hylo.ground_mask(hylo.read_cloud("map_dense.pcd"))      # True = ground
+    plan = hylo.inspect("map_crafted.pcd", "costmap", "targets.csv")  # viewpoints and route
 
 The calls run the C++ libraries the ``hylo`` command runs, with the same results; see
 docs/python.md.
@@ -13,6 +14,7 @@ docs/python.md.
 from . import _hylo
 from . import eval  # noqa: A004 (hylo.eval, as `hylo eval`)
 from ._config import Config, load_config
+from ._inspect import InspectionPlan, inspect
 from ._pipeline import Pipeline, State
 from ._runs import Result, localize, slam
 from ._terrain import GroundResult, extract_ground, ground_mask, read_cloud, write_cloud
@@ -35,7 +37,8 @@ def read_log(path, config=None):
 
 
 __all__ = [
-    "Config", "GroundResult", "ImuSample", "LogReader", "Pipeline", "Result", "RunFailed", "Scan",
-    "State", "eval", "extract_ground", "ground_mask", "load_config", "localize", "read_cloud",
-    "read_log", "read_trajectory", "slam", "write_cloud", "write_trajectory",
+    "Config", "GroundResult", "ImuSample", "InspectionPlan", "LogReader", "Pipeline", "Result",
+    "RunFailed", "Scan", "State", "eval", "extract_ground", "ground_mask", "inspect",
+    "load_config", "localize", "read_cloud", "read_log", "read_trajectory", "slam", "write_cloud",
+    "write_trajectory",
 ]

@@ -15,5 +15,6 @@ void BindLogs(py::module_& m);      // log_binding.cpp: LogReader, ImuSample, Sc
 void BindRuns(py::module_& m);      // run_binding.cpp: a log through the pipeline (slam, localize)
 void BindPipeline(py::module_& m);  // pipeline_binding.cpp: data from memory, scan by scan
 void BindEval(py::module_& m);      // eval_binding.cpp: trajectories, ATE, RPE
+void BindInspect(py::module_& m);   // inspect_binding.cpp: inspection planning from files
 
 }  // namespace hylo::python

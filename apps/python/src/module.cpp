@@ -12,4 +12,5 @@ PYBIND11_MODULE(_hylo, m) {
   hylo::python::BindRuns(m);
   hylo::python::BindPipeline(m);
   hylo::python::BindEval(m);
+  hylo::python::BindInspect(m);
 }

@@ -3,8 +3,9 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "hylo/logs/ros_bridge.h"
+#include "hylo/lie/isometry.h"
 #include "hylo/localization/pose_guess.h"
+#include "hylo/logs/ros_bridge.h"
 #include "hylo/run/prior_map_io.h"
 #include "ros_messages.h"
 
@@ -63,6 +64,15 @@ HyloNode::HyloNode(ros::NodeHandle nh, ros::NodeHandle private_nh, const NodePar
   global_localize_srv_ =
       private_nh_.advertiseService("global_localize", &HyloNode::OnGlobalLocalize, this);
   save_map_srv_ = private_nh_.advertiseService("save_map", &HyloNode::OnSaveMap, this);
+  if (!params_.inspection_targets.empty()) {
+    inspection_ = std::make_unique<const InspectionService>(
+        params_.inspection_map, params_.inspection_costmap, params_.inspection_targets,
+        config_.inspection);
+    plan_inspection_srv_ =
+        private_nh_.advertiseService("plan_inspection", &HyloNode::OnPlanInspection, this);
+    ROS_INFO("hylo_node: ~plan_inspection for %zu targets of %s", inspection_->num_targets(),
+             params_.inspection_targets.c_str());
+  }
   ROS_INFO("hylo_node: %s, back-end %s, lidar %s, imu %s, frames %s -> %s -> %s",
            session_.localizing() ? "localization in a prior map" : "SLAM", config_.BackendName().c_str(),
            config_.lidar.topic.c_str(),
@@ -197,6 +207,29 @@ bool HyloNode::OnSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Respons
   return true;
 }
 
+bool HyloNode::OnPlanInspection(nav_msgs::GetPlan::Request& request,
+                                nav_msgs::GetPlan::Response& response) {
+  std::optional<Eigen::Isometry3d> pose;
+  {
+    std::lock_guard<std::mutex> lock(request_mutex_);
+    pose = last_valid_T_world_imu_;
+  }
+  const geometry_msgs::PoseStamped& start = request.start;
+  std::string why;
+  const std::optional<Eigen::Vector2d> start_map =
+      ResolveStart(start.header.frame_id, {start.pose.position.x, start.pose.position.y}, pose,
+                   frames_.map, &why);
+  std::vector<Eigen::Vector2d> route;
+  if (!start_map || !inspection_->Plan(*start_map, &route, &why)) {
+    ROS_WARN("hylo_node: ~plan_inspection refused: %s", why.c_str());
+    return false;
+  }
+  ROS_INFO("hylo_node: ~plan_inspection from (%.2f, %.2f): %s", start_map->x(), start_map->y(),
+           why.c_str());
+  response.plan = ToPathMsg(route, frames_.map, ros::Time::now());
+  return true;
+}
+
 void HyloNode::ServeRequests() {
   std::optional<Eigen::Isometry3d> relocalization;
   std::vector<std::shared_ptr<std::promise<std::string>>> saves, globals;
@@ -286,6 +319,12 @@ void HyloNode::Run() {
   std::size_t published = 0;
   session_.OnResult([&](const odometry::ScanResult& r) {
     outputs_.PublishScan(r);
+    if (r.pose_status == odometry::PoseStatus::kValid) {
+      Eigen::Isometry3d T_world_imu = lie::ToIsometry(r.state.T_map_imu());
+      T_world_imu.translation() += session_.origin_world();
+      std::lock_guard<std::mutex> lock(request_mutex_);
+      last_valid_T_world_imu_ = T_world_imu;
+    }
     last = r;
     PointCloud().swap(last->registered_points_map);  // published; the health needs none
     ++published;

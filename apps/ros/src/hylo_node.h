@@ -8,9 +8,12 @@
 //               ~costmap (latched, when ~costmap is given)
 //   services    ~relocalize (nav_msgs/SetMap: initial_pose is the guess, map is ignored),
 //               ~global_localize (std_srvs/Trigger: forget the pose, search the whole prior
-//               map while moving), ~save_map (std_srvs/Trigger: writes ~save_map_path)
+//               map while moving), ~save_map (std_srvs/Trigger: writes ~save_map_path),
+//               ~plan_inspection (nav_msgs/GetPlan, when ~inspection_* are given: the
+//               inspection route from request.start, or the current pose; inspection_service.h)
 
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
+#include <nav_msgs/GetPlan.h>
 #include <nav_msgs/SetMap.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
@@ -28,6 +31,7 @@
 #include "hylo/odometry/odometry_pipeline.h"
 #include "hylo/run/session.h"
 #include "input_queue.h"
+#include "inspection_service.h"
 #include "node_outputs.h"
 #include "node_params.h"
 
@@ -49,6 +53,7 @@ class HyloNode {
   bool OnRelocalize(nav_msgs::SetMap::Request& request, nav_msgs::SetMap::Response& response);
   bool OnGlobalLocalize(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool OnSaveMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+  bool OnPlanInspection(nav_msgs::GetPlan::Request& request, nav_msgs::GetPlan::Response& response);
   /// Posts `job` to the worker and fills `response` with its answer (or its exception).
   void AskWorker(std::vector<std::shared_ptr<std::promise<std::string>>>* queue,
                  std_srvs::Trigger::Response* response);
@@ -73,7 +78,8 @@ class HyloNode {
   InputQueue input_;
   NodeOutputs outputs_;
   ros::Subscriber cloud_sub_, imu_sub_, initial_pose_sub_;
-  ros::ServiceServer relocalize_srv_, global_localize_srv_, save_map_srv_;
+  ros::ServiceServer relocalize_srv_, global_localize_srv_, save_map_srv_, plan_inspection_srv_;
+  std::unique_ptr<const InspectionService> inspection_;  ///< none without ~inspection_*
 
   // Callback side (lidar callback only).
   logs::PointTimeConvention convention_;
@@ -85,6 +91,7 @@ class HyloNode {
   std::optional<Eigen::Isometry3d> relocalization_request_;  ///< T_map_imu (local frame)
   std::vector<std::shared_ptr<std::promise<std::string>>> save_requests_;
   std::vector<std::shared_ptr<std::promise<std::string>>> global_requests_;
+  std::optional<Eigen::Isometry3d> last_valid_T_world_imu_;  ///< the newest valid pose
 
   // Worker side.
   bool relocalization_pending_ = false;

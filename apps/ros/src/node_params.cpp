@@ -10,6 +10,14 @@ bool NodeParams::IsValid(std::string* why) const {
     *why = "~config is empty: the run configuration YAML is required";
     return false;
   }
+  const int inspection_inputs =
+      !inspection_map.empty() + !inspection_costmap.empty() + !inspection_targets.empty();
+  if (inspection_inputs != 0 && inspection_inputs != 3) {
+    *why =
+        "~inspection_map, ~inspection_costmap and ~inspection_targets go together (all three "
+        "for ~plan_inspection, or none)";
+    return false;
+  }
   std::string sub;
   if (!queue.IsValid(&sub) || !outputs.IsValid(&sub)) {
     *why = sub;
@@ -25,6 +33,9 @@ NodeParams ReadNodeParams(const ros::NodeHandle& nh) {
   nh.param<std::string>("initial_guess", p.initial_guess, p.initial_guess);
   nh.param<std::string>("costmap", p.costmap, p.costmap);
   nh.param<std::string>("save_map_path", p.save_map_path, p.save_map_path);
+  nh.param<std::string>("inspection_map", p.inspection_map, p.inspection_map);
+  nh.param<std::string>("inspection_costmap", p.inspection_costmap, p.inspection_costmap);
+  nh.param<std::string>("inspection_targets", p.inspection_targets, p.inspection_targets);
   nh.param("registered_scan_voxel", p.registered_scan_voxel_m, p.registered_scan_voxel_m);
   int queue_scans = static_cast<int>(p.queue.max_scans);
   int queue_imu = static_cast<int>(p.queue.max_imu);

@@ -20,6 +20,10 @@ struct NodeParams {
                                        ///< localization.initial_guess, and when that is
                                        ///< empty too, a global start (the whole map searched)
   std::string costmap;                 ///< ~costmap: map_server YAML (hylo traversability)
+  std::string inspection_map;          ///< ~inspection_map: crafted map (PCD/PLY/LAS, map
+                                       ///< frame) for ~plan_inspection; "" = no service
+  std::string inspection_costmap;      ///< ~inspection_costmap: `hylo traversability` folder
+  std::string inspection_targets;      ///< ~inspection_targets: targets CSV/YAML (map frame)
   std::string save_map_path = "hylo_map.pcd";  ///< ~save_map_path: where ~save_map writes;
                                        ///< read again at every call (rosparam set works)
   double registered_scan_voxel_m = -1; ///< ~registered_scan_voxel: voxel of the published

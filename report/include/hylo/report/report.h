@@ -18,6 +18,14 @@ struct OutputFile {
   std::string path;  ///< where it is
 };
 
+/// A section with one image and its caption, after the costmap (e.g. the inspection plan).
+struct ImageSection {
+  std::string title;    ///< its heading
+  std::string text;     ///< a paragraph before the image (Markdown)
+  std::string image;    ///< PNG path; empty = none
+  std::string caption;  ///< a paragraph after it
+};
+
 struct ReportContent {
   std::string title;             ///< first heading
   std::string summary;           ///< a paragraph under the title (Markdown)
@@ -26,6 +34,7 @@ struct ReportContent {
   std::vector<PlotFile> plots;   ///< figures, in order
   std::string costmap_png;       ///< the costmap image; empty = none
   std::string costmap_caption;   ///< its legend
+  std::vector<ImageSection> sections;                           ///< after the costmap, in order
   std::vector<std::pair<std::string, std::string>> parameters;  ///< name, value (with unit)
   std::vector<OutputFile> files;                                ///< the run's outputs
 };
