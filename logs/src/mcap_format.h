@@ -48,7 +48,10 @@ class McapError : public std::runtime_error {
 };
 
 /// CRC-32 (the IEEE polynomial, as zlib computes it) of `n` bytes, continuing `crc` (0 to start).
+/// Carry-less multiplication where the processor has it (crc32.cpp).
 uint32_t Crc32(const uint8_t* data, std::size_t n, uint32_t crc = 0);
+/// The same with tables only: the reference the fast path is tested against.
+uint32_t Crc32Tables(const uint8_t* data, std::size_t n, uint32_t crc = 0);
 
 inline uint64_t LoadLe(const uint8_t* p, std::size_t bytes) {
   uint64_t v = 0;

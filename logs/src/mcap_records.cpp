@@ -1,45 +1,10 @@
-// MCAP record contents, field by field as the specification lists them, and the CRC-32 that
-// chunks, the summary and the data section carry.
+// MCAP record contents, field by field as the specification lists them.
 
 #include <cstring>
 
 #include "mcap_format.h"
 
 namespace hylo::logs::detail {
-namespace {
-
-// Slicing-by-8: eight table look-ups per 8 bytes, several GB/s, so that checking every chunk
-// costs little next to reading it.
-struct CrcTables {
-  uint32_t t[8][256];
-  CrcTables() {
-    for (uint32_t i = 0; i < 256; ++i) {
-      uint32_t c = i;
-      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-      t[0][i] = c;
-    }
-    for (int k = 1; k < 8; ++k) {
-      for (uint32_t i = 0; i < 256; ++i) t[k][i] = (t[k - 1][i] >> 8) ^ t[0][t[k - 1][i] & 0xff];
-    }
-  }
-};
-
-}  // namespace
-
-uint32_t Crc32(const uint8_t* p, std::size_t n, uint32_t crc) {
-  static const CrcTables tables;
-  const auto& t = tables.t;
-  crc = ~crc;
-  for (; n >= 8; p += 8, n -= 8) {
-    const uint32_t a = crc ^ static_cast<uint32_t>(LoadLe(p, 4));
-    const uint32_t b = static_cast<uint32_t>(LoadLe(p + 4, 4));
-    crc = t[7][a & 0xff] ^ t[6][(a >> 8) & 0xff] ^ t[5][(a >> 16) & 0xff] ^ t[4][a >> 24] ^
-          t[3][b & 0xff] ^ t[2][(b >> 8) & 0xff] ^ t[1][(b >> 16) & 0xff] ^ t[0][b >> 24];
-  }
-  for (; n > 0; --n) crc = t[0][(crc ^ *p++) & 0xff] ^ (crc >> 8);
-  return ~crc;
-}
-
 McapSchema ParseMcapSchema(const uint8_t* content, uint64_t size) {
   McapFields f(content, size);
   McapSchema s;

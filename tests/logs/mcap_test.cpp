@@ -207,6 +207,33 @@ TEST(Mcap, InsideAStoredChunkThatIsCutEveryWholeMessageIsKept) {
   EXPECT_NE(reader->recovery()->stop_reason.find("the last chunk is cut"), std::string::npos);
 }
 
+TEST(Crc32, MatchesTheTablesAtEveryLengthAndAlignment) {
+  // The check value of the CRC-32 catalogue, then random data: lengths around every fold
+  // boundary, every alignment, and a CRC continued across two calls.
+  const std::string check = "123456789";
+  EXPECT_EQ(detail::Crc32(reinterpret_cast<const uint8_t*>(check.data()), check.size()),
+            0xCBF43926u);
+  std::vector<uint8_t> data(70000);
+  uint32_t state = 12345;
+  for (uint8_t& b : data) {
+    state = state * 1664525u + 1013904223u;
+    b = static_cast<uint8_t>(state >> 24);
+  }
+  for (std::size_t n = 0; n < 600; ++n) {
+    for (std::size_t offset : {0, 1, 3, 8, 15}) {
+      ASSERT_EQ(detail::Crc32(data.data() + offset, n), detail::Crc32Tables(data.data() + offset, n))
+          << n << " bytes at offset " << offset;
+    }
+  }
+  for (std::size_t n : {4095, 4096, 65536, 69999}) {
+    EXPECT_EQ(detail::Crc32(data.data(), n), detail::Crc32Tables(data.data(), n)) << n;
+    const uint32_t first = detail::Crc32(data.data(), n / 3);
+    EXPECT_EQ(detail::Crc32(data.data() + n / 3, n - n / 3, first),
+              detail::Crc32Tables(data.data(), n))
+        << n;
+  }
+}
+
 TEST(Mcap, ACorruptChunkOrSummaryIsCaughtByItsCrc) {
   const std::string dir = hylo::testing::ScratchDir("mcap_crc");
   const std::vector<LogMessage> written = SampleMessages(1.0);
