@@ -1,7 +1,11 @@
 // An MCAP file read through its summary: chunks in order of their first log time, messages
-// merged across the chunks loaded, so that overlapping chunks still give log-time order.
+// merged across the chunks loaded, so that overlapping chunks still give log-time order. The
+// next chunk's file read, decompression and CRC run on another thread while the caller decodes
+// the current chunk's messages (on a machine with a second core): decompression is what a
+// compressed recording costs beyond a stored one, and it need not wait for the decoding.
 
 #include <algorithm>
+#include <thread>
 
 #include "mcap_chunk_codec.h"
 #include "mcap_reader.h"
@@ -16,6 +20,7 @@ McapIndexedReader::McapIndexedReader(const std::string& path, McapSummary summar
                                 ? a.message_start_time < b.message_start_time
                                 : a.chunk_start_offset < b.chunk_start_offset;
                    });
+  read_ahead_ = std::thread::hardware_concurrency() > 1;
 }
 
 void McapIndexedReader::Fail(const McapChunkIndex& index, const std::string& why) const {
@@ -29,7 +34,7 @@ bool McapIndexedReader::Next(McapMessage* message) {
   // no later than it before yielding it.
   while (next_chunk_ < chunks.size() &&
          (pending_.empty() || chunks[next_chunk_].message_start_time <= pending_.top().log_time)) {
-    LoadChunk(chunks[next_chunk_++]);
+    LoadChunk(next_chunk_++);
   }
   if (pending_.empty()) {
     current_.reset();
@@ -45,32 +50,64 @@ bool McapIndexedReader::Next(McapMessage* message) {
   return true;
 }
 
-void McapIndexedReader::LoadChunk(const McapChunkIndex& index) {
-  if (index.chunk_length > (uint64_t{1} << 31)) Fail(index, "larger than 2 GB: corrupt");
-  raw_.resize(index.chunk_length);
-  if (!file_.ReadAt(index.chunk_start_offset, raw_.data(), raw_.size())) Fail(index, "cut short");
-  if (raw_[0] != kMcapChunk || LoadLe(&raw_[1], 8) != index.chunk_length - kMcapRecordPrefix) {
-    Fail(index, "no chunk record where the summary says");
+McapIndexedReader::ChunkRecords McapIndexedReader::ReadChunk(std::size_t i) {
+  const McapChunkIndex& index = summary_.chunks[i];
+  ChunkRecords out;
+  if (index.chunk_length > (uint64_t{1} << 31)) {
+    out.error = "larger than 2 GB: corrupt";
+    return out;
   }
-  const uint8_t* content = raw_.data() + kMcapRecordPrefix;
+  std::vector<uint8_t> raw(index.chunk_length);
+  if (!file_.ReadAt(index.chunk_start_offset, raw.data(), raw.size())) {
+    out.error = "cut short";
+    return out;
+  }
+  if (raw[0] != kMcapChunk || LoadLe(&raw[1], 8) != index.chunk_length - kMcapRecordPrefix) {
+    out.error = "no chunk record where the summary says";
+    return out;
+  }
+  const uint8_t* content = raw.data() + kMcapRecordPrefix;
   const uint64_t length = index.chunk_length - kMcapRecordPrefix;
   McapChunkHeader header;
   try {
     header = ParseMcapChunkHeader(content, length);
   } catch (const McapError& e) {
-    Fail(index, e.what());
+    out.error = e.what();
+    return out;
   }
-  if (header.records_size > length - header.records_at) Fail(index, "records past its end");
+  if (header.records_size > length - header.records_at) {
+    out.error = "records past its end";
+    return out;
+  }
   auto records = std::make_shared<std::vector<uint8_t>>();
-  std::string why;
   if (!DecompressMcapChunk(header.compression, content + header.records_at, header.records_size,
-                           header.uncompressed_size, true, records.get(), &why)) {
-    Fail(index, why);
+                           header.uncompressed_size, true, records.get(), &out.error)) {
+    return out;
   }
   if (header.uncompressed_crc != 0 &&
       Crc32(records->data(), records->size()) != header.uncompressed_crc) {
-    Fail(index, "its CRC does not match its records");
+    out.error = "its CRC does not match its records";
+    return out;
   }
+  out.records = std::move(records);
+  return out;
+}
+
+void McapIndexedReader::LoadChunk(std::size_t i) {
+  const McapChunkIndex& index = summary_.chunks[i];
+  ChunkRecords loaded;
+  if (ahead_.valid() && ahead_index_ == i) {
+    loaded = ahead_.get();
+  } else {
+    if (ahead_.valid()) ahead_.wait();  // never two readers of file_ at once
+    loaded = ReadChunk(i);
+  }
+  if (read_ahead_ && i + 1 < summary_.chunks.size()) {
+    ahead_index_ = i + 1;
+    ahead_ = std::async(std::launch::async, [this, next = i + 1] { return ReadChunk(next); });
+  }
+  if (!loaded.error.empty()) Fail(index, loaded.error);
+  const std::shared_ptr<std::vector<uint8_t>>& records = loaded.records;
   const std::vector<uint8_t>& r = *records;
   std::size_t pos = 0;
   try {

@@ -3,13 +3,15 @@
 //  - Through its summary (McapIndexedReader): the Chunk Index records say where every chunk is
 //    and which log times it holds; chunks are loaded in order of their first log time and their
 //    messages merged, so messages come in log-time order even where chunks overlap, with about
-//    one chunk in memory.
+//    two chunks in memory: the next chunk is read, decompressed and checked on a second thread
+//    while the caller decodes the messages of the current one.
 //  - Record by record from the start (McapLinearScanner), in file order: for a file written
 //    without a summary, and for a recording that was killed or cut (no Footer, the last chunk
 //    cut), read up to its last complete message.
 
 #include <cstdint>
 #include <fstream>
+#include <future>
 #include <map>
 #include <memory>
 #include <optional>
@@ -150,7 +152,16 @@ class McapIndexedReader {
     }
   };
 
-  void LoadChunk(const McapChunkIndex& index);
+  /// A chunk's records as read, decompressed and checked, or why they could not be.
+  struct ChunkRecords {
+    std::shared_ptr<std::vector<uint8_t>> records;
+    std::string error;
+  };
+
+  // Reads, decompresses and checks chunk `index` of the sorted list; only file_ is touched, and
+  // only by the one thread that runs it (the caller waits for it before reading the file).
+  ChunkRecords ReadChunk(std::size_t index);
+  void LoadChunk(std::size_t index);
   [[noreturn]] void Fail(const McapChunkIndex& index, const std::string& why) const;
 
   McapFile file_;
@@ -159,7 +170,10 @@ class McapIndexedReader {
   uint64_t loaded_ = 0;
   std::priority_queue<Pending, std::vector<Pending>, std::greater<Pending>> pending_;
   Buffer current_;  // keeps the last message's bytes alive
-  std::vector<uint8_t> raw_;
+  bool read_ahead_ = false;     // a second core reads the next chunk meanwhile
+  std::size_t ahead_index_ = 0;
+  std::future<ChunkRecords> ahead_;  // chunk ahead_index_ being read; declared last, so its
+                                     // destructor waits for the read before file_ goes
 };
 
 }  // namespace hylo::logs::detail
