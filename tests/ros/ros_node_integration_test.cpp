@@ -22,6 +22,7 @@
 
 #include "hylo/io/cloud_io.h"
 #include "hylo/io/costmap_io.h"
+#include "hylo/io/json.h"
 #include "hylo/logs/ros_bridge.h"
 #include "inspection_yard.h"
 #include "ros_graph.h"
@@ -302,6 +303,12 @@ TEST_F(RosNodeIntegration, StartsGloballyAndSearchesAgainOnRequest) {
       << graph_->NodeLog();
   std::lock_guard<std::mutex> lock(c.mutex);
   EXPECT_GT(c.odometry.size(), before_request + 20) << "odometry must resume after the search";
+  // Both searches (the start's and the requested one) ran beside the scan path, not in its
+  // way: no scan waited long enough in the node's queue to be dropped.
+  ASSERT_FALSE(c.health.empty());
+  const io::Json input = io::Json::parse(c.health.back()).at("input");
+  EXPECT_EQ(input.at("scans_dropped_full").get<std::size_t>(), 0u) << c.health.back();
+  EXPECT_GT(input.at("scans_received").get<std::size_t>(), before_request + 20);
   evaluation::AteOptions absolute;
   absolute.alignment = evaluation::Alignment::kNone;
   const evaluation::AteResult ate =

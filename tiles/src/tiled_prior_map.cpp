@@ -1,10 +1,10 @@
 // Tiled prior maps for a run (tiled_prior_map.h): the tiles as a TileSource read from files, the
 // start of localization in them, the added points written back as tiles, and what the loader
 // did, for the summary.
+#include "hylo/tiles/tiled_prior_map.h"
+
 #include <map>
 #include <stdexcept>
-
-#include "hylo/tiles/tiled_prior_map.h"
 
 #include "hylo/common/local_origin.h"
 #include "hylo/registration/voxel_filter.h"
