@@ -57,7 +57,8 @@ McapIndexedReader::ChunkRecords McapIndexedReader::ReadChunk(std::size_t i) {
     out.error = "larger than 2 GB: corrupt";
     return out;
   }
-  std::vector<uint8_t> raw(index.chunk_length);
+  std::vector<uint8_t>& raw = raw_;  // reused: one ReadChunk runs at a time
+  raw.resize(index.chunk_length);
   if (!file_.ReadAt(index.chunk_start_offset, raw.data(), raw.size())) {
     out.error = "cut short";
     return out;

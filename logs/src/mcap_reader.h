@@ -158,8 +158,8 @@ class McapIndexedReader {
     std::string error;
   };
 
-  // Reads, decompresses and checks chunk `index` of the sorted list; only file_ is touched, and
-  // only by the one thread that runs it (the caller waits for it before reading the file).
+  // Reads, decompresses and checks chunk `index` of the sorted list; only file_ and raw_ are
+  // touched, by one call at a time (the caller waits for a read ahead before reading itself).
   ChunkRecords ReadChunk(std::size_t index);
   void LoadChunk(std::size_t index);
   [[noreturn]] void Fail(const McapChunkIndex& index, const std::string& why) const;
@@ -170,6 +170,7 @@ class McapIndexedReader {
   uint64_t loaded_ = 0;
   std::priority_queue<Pending, std::vector<Pending>, std::greater<Pending>> pending_;
   Buffer current_;  // keeps the last message's bytes alive
+  std::vector<uint8_t> raw_;   // the chunk record as read (ReadChunk's)
   bool read_ahead_ = false;     // a second core reads the next chunk meanwhile
   std::size_t ahead_index_ = 0;
   std::future<ChunkRecords> ahead_;  // chunk ahead_index_ being read; declared last, so its
