@@ -9,8 +9,11 @@
 //
 //   hylo_recovery_benchmark [--scenarios 0-23] [--half even|odd|all] [--cases 6] [--seed S]
 //                           [--window S] [--max-drive S] [--backends ieskf|sliding_window|both]
-//                           [--jobs N] [--json PATH] [--preset-dir DIR] [--quick] [--list]
-//                           [--summarize A.json...]
+//                           [--background] [--jobs N] [--json PATH] [--preset-dir DIR]
+//                           [--quick] [--list] [--summarize A.json...]
+// --background searches on a worker thread as the ROS node does (localization.search.background;
+// off by default, as for a log read from a file, whose results then do not depend on the
+// machine's load): the scan path's times while searching are then a live node's.
 // --list prints the cases each scenario would run (where and when), simulating nothing.
 // --jobs N runs N scenarios at once, each in a process of its own (this program again, with
 // one scenario), and summarizes their JSON as one run.
@@ -41,6 +44,7 @@ using hylo::testing::RecoveryScenario;
 
 struct Args {
   std::vector<uint64_t> scenarios;
+  bool background = false;
   std::string half = "all", backends = "ieskf";
   hylo::testing::RecoveryRunOptions run;
   int jobs = 1;
@@ -100,6 +104,11 @@ bool Parse(int argc, char** argv, Args* args) {
     } else if (a == "--backends" && has) {
       args->backends = argv[++i];
       if (!ParseBackends(args->backends, &args->run.backends)) return false;
+    } else if (a == "--background") {
+      args->background = true;
+      args->run.adjust = [](hylo::odometry::OdometryPipelineOptions* o) {
+        o->localization.search.background = true;
+      };
     } else if (a == "--jobs" && has) {
       args->jobs = std::max(1, std::atoi(argv[++i]));
     } else if (a == "--json" && has) {
@@ -154,8 +163,24 @@ std::vector<RecoveryScenario> ReadRuns(const std::vector<std::string>& paths) {
   return all;
 }
 
-hylo::io::Json Document(const std::vector<RecoveryScenario>& all) {
+// What the run was asked for, so that a JSON says how to reproduce it; a summary of other runs
+// repeats the first one's.
+hylo::io::Json RunSettings(const Args& args) {
+  if (!args.summarize.empty()) {
+    const hylo::io::Json first = hylo::io::ReadJsonFile(args.summarize.front());
+    return first.contains("settings") ? first.at("settings") : hylo::io::Json();
+  }
+  return {{"cases_per_scenario", args.run.draw.cases},
+          {"seed", args.run.draw.seed},
+          {"window_s", args.run.draw.window_s},
+          {"max_drive_s", args.run.max_drive_s},
+          {"background_search", args.background},
+          {"quick", args.quick}};
+}
+
+hylo::io::Json Document(const std::vector<RecoveryScenario>& all, const Args& args) {
   hylo::io::Json out = hylo::io::Json::object();
+  out["settings"] = RunSettings(args);
   out["note"] =
       "positions in the prior map's frame without alignment; times from the data's return (the "
       "log's start) to a valid pose within 1 m that holds 5 s; scan times are per scan, thread "
@@ -167,8 +192,9 @@ hylo::io::Json Document(const std::vector<RecoveryScenario>& all) {
 
 // Prints the table and writes every scenario, the table and the totals (the first back-end,
 // every kind, every scenario: what the smoke test checks).
-void Finish(const std::vector<RecoveryScenario>& all, const std::string& json_path) {
-  hylo::io::Json out = Document(all);
+void Finish(const std::vector<RecoveryScenario>& all, const Args& args) {
+  const std::string& json_path = args.json_path;
+  hylo::io::Json out = Document(all, args);
   out["summary"] = hylo::benchmarks::PrintSummary(all);
   if (!all.empty() && !all.front().results.empty()) {
     out["totals"] =
@@ -263,7 +289,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: hylo_recovery_benchmark [--scenarios 0-23] [--half even|odd|all] "
                  "[--cases 6] [--seed S] [--window S] [--max-drive S] "
-                 "[--backends ieskf|sliding_window|both] [--jobs N] [--json PATH] "
+                 "[--backends ieskf|sliding_window|both] [--background] [--jobs N] [--json PATH] "
                  "[--preset-dir DIR] [--quick] [--list] [--summarize A.json...]\n");
     return 2;
   }
@@ -275,20 +301,20 @@ int main(int argc, char** argv) {
     if (!args.summarize.empty()) {
       const std::vector<RecoveryScenario> all = ReadRuns(args.summarize);
       for (const RecoveryScenario& s : all) hylo::benchmarks::PrintCases(s);
-      Finish(all, args.json_path);
+      Finish(all, args);
       return 0;
     }
     if (args.jobs > 1 && args.scenarios.size() > 1) {
-      Finish(RunInChildren(args, argc, argv), args.json_path);
+      Finish(RunInChildren(args, argc, argv), args);
       return 0;
     }
     std::vector<RecoveryScenario> all;
     for (const uint64_t n : args.scenarios) {
       all.push_back(hylo::testing::RunRecoveryScenario(hylo::sim::DrawScenario(n), args.run));
       hylo::benchmarks::PrintCases(all.back());
-      hylo::io::WriteJsonFile(args.json_path, Document(all));
+      hylo::io::WriteJsonFile(args.json_path, Document(all, args));
     }
-    Finish(all, args.json_path);
+    Finish(all, args);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 1;

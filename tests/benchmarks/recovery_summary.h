@@ -24,12 +24,15 @@ struct RecoveryStats {
   double error_after_median_m = 0.0;                     ///< median of the cases' medians
   std::size_t wrong_accepts = 0, bad_valid_live = 0, bad_valid_finalized = 0;
   double worst_valid_error_m = 0.0;
-  /// Per-case wall ms on the scan path: the median of the cases' tracking medians, of their
-  /// searching p99s and the worst of those; cases with searching scans only.
-  double tracking_wall_ms_median = 0.0;
+  /// Per-case wall ms on the scan path: the median over the cases of their tracking median and
+  /// p99, of their searching median and p99, and the worst searching p99 (searching: cases with
+  /// such scans only).
+  double tracking_wall_ms_median = 0.0, tracking_wall_ms_p99 = 0.0;
+  double searching_wall_ms_median = 0.0;
   double searching_wall_ms_p99 = 0.0, searching_wall_ms_p99_worst = 0.0;
   /// The same in thread CPU.
-  double tracking_cpu_ms_median = 0.0;
+  double tracking_cpu_ms_median = 0.0, tracking_cpu_ms_p99 = 0.0;
+  double searching_cpu_ms_median = 0.0;
   double searching_cpu_ms_p99 = 0.0, searching_cpu_ms_p99_worst = 0.0;
   /// Per case, searching p99 over tracking median (wall): median and worst over the cases.
   double p99_over_median = 0.0, p99_over_median_worst = 0.0;
