@@ -170,12 +170,9 @@ hylo::io::Json RunSettings(const Args& args) {
     const hylo::io::Json first = hylo::io::ReadJsonFile(args.summarize.front());
     return first.contains("settings") ? first.at("settings") : hylo::io::Json();
   }
-  return {{"cases_per_scenario", args.run.draw.cases},
-          {"seed", args.run.draw.seed},
-          {"window_s", args.run.draw.window_s},
-          {"max_drive_s", args.run.max_drive_s},
-          {"background_search", args.background},
-          {"quick", args.quick}};
+  return {{"cases_per_scenario", args.run.draw.cases}, {"seed", args.run.draw.seed},
+          {"window_s", args.run.draw.window_s},        {"max_drive_s", args.run.max_drive_s},
+          {"background_search", args.background},      {"quick", args.quick}};
 }
 
 hylo::io::Json Document(const std::vector<RecoveryScenario>& all, const Args& args) {
@@ -197,8 +194,8 @@ void Finish(const std::vector<RecoveryScenario>& all, const Args& args) {
   hylo::io::Json out = Document(all, args);
   out["summary"] = hylo::benchmarks::PrintSummary(all);
   if (!all.empty() && !all.front().results.empty()) {
-    out["totals"] =
-        hylo::benchmarks::ToJson(hylo::benchmarks::Summarize(all, all.front().results.front().backend, "", -1));
+    out["totals"] = hylo::benchmarks::ToJson(
+        hylo::benchmarks::Summarize(all, all.front().results.front().backend, "", -1));
   }
   hylo::io::WriteJsonFile(json_path, out);
   std::printf("\nJSON: %s\n", json_path.c_str());
@@ -212,12 +209,13 @@ void List(const Args& args) {
     std::printf("#%-3llu %s\n", static_cast<unsigned long long>(n), scenario.Summary().c_str());
     for (std::size_t k = 0; k < cases.size(); ++k) {
       const hylo::testing::RecoveryCase& c = cases[k];
-      std::printf("  %2d %-12s cut %6.1f s, back %6.1f s (%5.1f m, drawn %5.1f m), %.1f m/s at "
-                  "(%.1f, %.1f) m\n",
-                  c.index, hylo::testing::ToString(c.kind).c_str(),
-                  1e-9 * double(c.cut_t_ns - scenario.start_b_ns),
-                  1e-9 * double(c.return_t_ns - scenario.start_b_ns), c.distance_m,
-                  c.drawn_distance_m, c.speed_mps, where[k].x(), where[k].y());
+      std::printf(
+          "  %2d %-12s cut %6.1f s, back %6.1f s (%5.1f m, drawn %5.1f m), %.1f m/s at "
+          "(%.1f, %.1f) m\n",
+          c.index, hylo::testing::ToString(c.kind).c_str(),
+          1e-9 * double(c.cut_t_ns - scenario.start_b_ns),
+          1e-9 * double(c.return_t_ns - scenario.start_b_ns), c.distance_m, c.drawn_distance_m,
+          c.speed_mps, where[k].x(), where[k].y());
     }
   }
 }

@@ -64,8 +64,8 @@ RecoveryStats Summarize(const std::vector<RecoveryScenario>& all,
                         estimation::Estimator::Backend backend, const std::string& kind,
                         int parity) {
   RecoveryStats s;
-  std::vector<double> time, distance, error, track_wall, track_cpu, track_wall_p99,
-      track_cpu_p99, search_wall_median, search_cpu_median, search_wall, search_cpu, ratio;
+  std::vector<double> time, distance, error, track_wall, track_cpu, track_wall_p99, track_cpu_p99,
+      search_wall_median, search_cpu_median, search_wall, search_cpu, ratio;
   for (const RecoveryScenario& scenario : all) {
     if (parity >= 0 && static_cast<int>(scenario.number % 2) != parity) continue;
     for (const RecoveryResult& r : scenario.results) {
@@ -165,7 +165,8 @@ io::Json PrintSummary(const std::vector<RecoveryScenario>& all) {
   std::printf(
       "\n| back-end | kind | half | cases (skipped) | recovered | time median / p90 | "
       "distance median / p90 | error after | wrong accepts | bad valid live / final (worst) | "
-      "scan wall ms tracking p50 / p99 | searching p50 / p99 (worst p99) | searching p99 / tracking "
+      "scan wall ms tracking p50 / p99 | searching p50 / p99 (worst p99) | searching p99 / "
+      "tracking "
       "p50 (worst) |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   io::Json json = io::Json::object();
@@ -189,8 +190,7 @@ io::Json PrintSummary(const std::vector<RecoveryScenario>& all) {
             s.distance_p90_m, 100.0 * s.error_after_median_m, s.wrong_accepts, s.bad_valid_live,
             s.bad_valid_finalized, s.worst_valid_error_m, s.tracking_wall_ms_median,
             s.tracking_wall_ms_p99, s.searching_wall_ms_median, s.searching_wall_ms_p99,
-            s.searching_wall_ms_p99_worst, s.p99_over_median,
-            s.p99_over_median_worst);
+            s.searching_wall_ms_p99_worst, s.p99_over_median, s.p99_over_median_worst);
       }
     }
   }

@@ -18,7 +18,7 @@ void PrintCases(const testing::RecoveryScenario& s);
 /// Over one group of cases (skipped ones counted apart, never as recovered or not).
 struct RecoveryStats {
   std::size_t cases = 0, skipped = 0, recovered = 0;
-  double recovered_percent = 0.0;  ///< of the cases not skipped
+  double recovered_percent = 0.0;                        ///< of the cases not skipped
   double time_median_s = 0.0, time_p90_s = 0.0;          ///< over the recovered cases
   double distance_median_m = 0.0, distance_p90_m = 0.0;  ///< ...
   double error_after_median_m = 0.0;                     ///< median of the cases' medians

@@ -113,16 +113,15 @@ namespace {
 // latest return; the cut placed uniformly along the travel that leaves room for it.
 bool DrawGap(RecoveryKind kind, const DriveTruth& truth, const RecoveryDrawOptions& options,
              sim::Rng* rng, RecoveryCase* out) {
-  const int64_t earliest_ns =
-      truth.motion_start_ns() + SecondsToNanos(options.tracking_before_s);
+  const int64_t earliest_ns = truth.motion_start_ns() + SecondsToNanos(options.tracking_before_s);
   const double first_m = truth.DistanceAt(earliest_ns);
   const double last_m = truth.DistanceAt(truth.end_ns() - SecondsToNanos(options.window_s));
   const double drawn_m = rng->Uniform(options.min_gap_m, options.max_gap_m);
   const double gap_m = std::min(drawn_m, last_m - first_m - 0.5);
   if (gap_m < options.min_gap_m) return false;
   const int64_t cut_ns = truth.TimeAtDistance(rng->Uniform(first_m, last_m - gap_m));
-  if (!PlaceRecoveryCase(kind, NanosToSeconds(std::max(cut_ns, earliest_ns) -
-                                              truth.motion_start_ns()),
+  if (!PlaceRecoveryCase(kind,
+                         NanosToSeconds(std::max(cut_ns, earliest_ns) - truth.motion_start_ns()),
                          gap_m, truth, options, out)) {
     return false;
   }

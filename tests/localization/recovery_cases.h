@@ -73,12 +73,12 @@ struct RecoveryCase {
 };
 
 struct RecoveryDrawOptions {
-  int cases = 6;                ///< per scenario, the kinds in turn (offset by the scenario)
-  uint64_t seed = 0;            ///< another seed, other cases on the same drives
-  double window_s = 30.0;       ///< data after the return (the log's start), s
-  double min_gap_m = 5.0;       ///< gaps: travel drawn uniformly in [min, max], m
+  int cases = 6;           ///< per scenario, the kinds in turn (offset by the scenario)
+  uint64_t seed = 0;       ///< another seed, other cases on the same drives
+  double window_s = 30.0;  ///< data after the return (the log's start), s
+  double min_gap_m = 5.0;  ///< gaps: travel drawn uniformly in [min, max], m
   double max_gap_m = 100.0;
-  double min_speed_mps = 0.5;   ///< moving start: true speed in [min, max], m/s
+  double min_speed_mps = 0.5;  ///< moving start: true speed in [min, max], m/s
   double max_speed_mps = 3.0;
   double tracking_before_s = 3.0;  ///< gaps begin this long after the motion at the earliest,
                                    ///< s (the start from the guess is done by then)

@@ -105,8 +105,8 @@ RecoveryScenario RunRecoveryScenario(const sim::Scenario& drawn,
       if (options.adjust) options.adjust(&o);
       std::optional<Eigen::Isometry3d> start_guess;
       if (c.kind != RecoveryKind::kMovingStart) start_guess = guess;
-      runs.push_back(std::make_unique<RecoveryRun>(c, o, prior, start_guess,
-                                                   scenario.lidar_time_offset_ns));
+      runs.push_back(
+          std::make_unique<RecoveryRun>(c, o, prior, start_guess, scenario.lidar_time_offset_ns));
       tee.Add(runs.back().get());
       out.results.push_back({c, backend, {}});
     }
@@ -122,14 +122,10 @@ RecoveryScenario RunRecoveryScenario(const sim::Scenario& drawn,
 namespace {
 
 io::Json CaseJson(const RecoveryCase& c) {
-  return {{"index", c.index},
-          {"kind", ToString(c.kind)},
-          {"cut_t_ns", c.cut_t_ns},
-          {"return_t_ns", c.return_t_ns},
-          {"end_t_ns", c.end_t_ns},
-          {"drawn_distance_m", c.drawn_distance_m},
-          {"distance_m", c.distance_m},
-          {"speed_mps", c.speed_mps}};
+  return {{"index", c.index},           {"kind", ToString(c.kind)},
+          {"cut_t_ns", c.cut_t_ns},     {"return_t_ns", c.return_t_ns},
+          {"end_t_ns", c.end_t_ns},     {"drawn_distance_m", c.drawn_distance_m},
+          {"distance_m", c.distance_m}, {"speed_mps", c.speed_mps}};
 }
 
 RecoveryCase CaseFromJson(uint64_t scenario, const io::Json& j) {

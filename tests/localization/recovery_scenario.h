@@ -35,7 +35,7 @@ struct RecoveryRunOptions {
   RecoveryDrawOptions draw;
   RecoveryScoreOptions score;
   std::vector<RecoveryCaseSpec> specs;  ///< not empty: these cases instead of drawn ones
-  double max_drive_s = 0.0;  ///< > 0: both drives end after this much driving, s
+  double max_drive_s = 0.0;             ///< > 0: both drives end after this much driving, s
   double prior_voxel_m = 0.1;  ///< uniform sampling of the true-pose map before thinning, m
   /// Changes every run's options after the sheet's (e.g. a setting being chosen).
   std::function<void(odometry::OdometryPipelineOptions*)> adjust;

@@ -106,9 +106,9 @@ RecoveryFigures ScoreRecovery(const RecoveryRun& run, const DriveTruth& truth,
   if (session.failed()) {
     f.note = session.pipeline().message();
   } else {
-    f.note = events.empty() ? "no localization event"
-                            : localization::ToString(events.back().kind) + ": " +
-                                  events.back().message;
+    f.note = events.empty()
+                 ? "no localization event"
+                 : localization::ToString(events.back().kind) + ": " + events.back().message;
   }
   if (c.kind != RecoveryKind::kMovingStart && !started_before_cut) {
     f.skipped = true;

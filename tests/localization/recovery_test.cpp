@@ -36,12 +36,13 @@ TEST_P(Recovery, DISABLED_AKidnapAndAMovingStartAreFoundAgainWithoutAWrongPose) 
     const RecoveryCase& c = r.recovery_case;
     const RecoveryFigures& f = r.figures;
     SCOPED_TRACE(ToString(c.kind));
-    std::printf("  %-12s %.1f m at %.1f m/s: %s %.1f s %.1f m, accepts %d (wrong %d), bad valid "
-                "%zu/%zu, worst valid %.2f m | %s\n",
-                ToString(c.kind).c_str(), c.distance_m, c.speed_mps,
-                f.recovered ? "recovered in" : "NOT recovered", f.time_s, f.distance_m, f.accepts,
-                f.wrong_accepts, f.bad_valid_live, f.bad_valid_finalized, f.worst_valid_error_m,
-                f.note.c_str());
+    std::printf(
+        "  %-12s %.1f m at %.1f m/s: %s %.1f s %.1f m, accepts %d (wrong %d), bad valid "
+        "%zu/%zu, worst valid %.2f m | %s\n",
+        ToString(c.kind).c_str(), c.distance_m, c.speed_mps,
+        f.recovered ? "recovered in" : "NOT recovered", f.time_s, f.distance_m, f.accepts,
+        f.wrong_accepts, f.bad_valid_live, f.bad_valid_finalized, f.worst_valid_error_m,
+        f.note.c_str());
     ASSERT_FALSE(f.skipped) << f.note;
     EXPECT_EQ(f.bad_valid_live, 0u) << "published as valid while > 1 m off";
     EXPECT_EQ(f.bad_valid_finalized, 0u) << "written as valid while > 1 m off";
