@@ -7,9 +7,9 @@
 #include <memory>
 #include <stdexcept>
 
+#include "estimation/scenario_sinks.h"
 #include "hylo/evaluation/trajectory_metrics.h"
 #include "hylo/mapping/prior_map.h"
-#include "hylo/registration/voxel_filter.h"
 #include "hylo/run/session.h"
 #include "hylo/sim/scenario_simulator.h"
 #include "hylo/sim_io/scenario_writer.h"
@@ -22,31 +22,6 @@ using odometry::OdometryPipeline;
 using evaluation::TimedPose;
 
 constexpr double kDeg = M_PI / 180.0;
-
-// Hands every measurement to several sinks.
-class Tee : public sim::SessionSink {
- public:
-  void Add(sim::SessionSink* sink) { sinks_.push_back(sink); }
-  void OnImu(const ImuSample& s) override {
-    for (auto* sink : sinks_) sink->OnImu(s);
-  }
-  void OnScan(const LidarScan& s) override {
-    for (auto* sink : sinks_) sink->OnScan(s);
-  }
-  void OnTruth(const sim::TruthSample& t) override {
-    for (auto* sink : sinks_) sink->OnTruth(t);
-  }
-
- private:
-  std::vector<sim::SessionSink*> sinks_;
-};
-
-struct TruthTrack : sim::SessionSink {
-  void OnImu(const ImuSample&) override {}
-  void OnScan(const LidarScan&) override {}
-  void OnTruth(const sim::TruthSample& t) override { poses.push_back({t.t_ns, t.T_map_imu}); }
-  std::vector<TimedPose> poses;
-};
 
 // A pipeline fed as a user's run would be (the configuration carries the sheet's clock offset).
 // Finalized poses go back to the world frame (a prior map's local origin added).
@@ -72,42 +47,6 @@ class PipelineRun : public sim::SessionSink {
   std::vector<TimedPose> finalized;  ///< the same states, world frame
   Eigen::Vector3d origin_world = Eigen::Vector3d::Zero();
 };
-
-// The mapping drive's scans placed at their true poses (each return at its own time, to
-// 10 us), uniformly sampled.
-class TruePoseMap : public sim::SessionSink {
- public:
-  TruePoseMap(const sim::ScenarioSimulator& simulator, double voxel_m)
-      : simulator_(simulator), sampler_(static_cast<float>(voxel_m)) {}
-  void OnImu(const ImuSample&) override {}
-  void OnTruth(const sim::TruthSample&) override {}
-  void OnScan(const LidarScan& scan) override {
-    constexpr int64_t kBucketNs = 20'000;
-    PointCloud points;
-    points.reserve(scan.points.size());
-    int64_t bucket = -1;
-    Eigen::Isometry3d T_map_lidar = Eigen::Isometry3d::Identity();
-    for (const ScanPoint& p : scan.points) {
-      if (p.offset_ns / kBucketNs != bucket) {
-        bucket = p.offset_ns / kBucketNs;
-        T_map_lidar = simulator_.LidarPoseAt(scan.t_ns + bucket * kBucketNs + kBucketNs / 2);
-      }
-      points.push_back((T_map_lidar * p.position_lidar.cast<double>()).cast<float>());
-    }
-    sampler_.Add(points);
-  }
-  const PointCloud& points() const { return sampler_.points(); }
-
- private:
-  const sim::ScenarioSimulator& simulator_;
-  registration::UniformSampler sampler_;
-};
-
-double Percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<std::size_t>(q * (v.size() - 1) + 0.5))];
-}
 
 ModeFigures Score(const PipelineRun& run, const std::vector<TimedPose>& truth,
                   evaluation::Alignment alignment, std::size_t scans_simulated) {
@@ -217,17 +156,6 @@ odometry::OdometryPipelineOptions OptionsFor(const config::RunConfig& config,
   return o;
 }
 
-// The localization drive's true start, off by 0.5-1.5 m and 3-10 deg of yaw.
-Eigen::Isometry3d Guess(const sim::Scenario& scenario, const Eigen::Isometry3d& truth_start) {
-  sim::Rng rng = sim::Rng::Derive(scenario.number, 0x9e55);
-  const double distance = rng.Uniform(0.5, 1.5), heading = rng.Uniform(0.0, 2.0 * M_PI);
-  const double yaw = (rng.Uniform() < 0.5 ? -1.0 : 1.0) * rng.Uniform(3.0, 10.0) * kDeg;
-  Eigen::Isometry3d guess = truth_start;
-  guess.translation() += distance * Eigen::Vector3d(std::cos(heading), std::sin(heading), 0.0);
-  guess.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * guess.linear();
-  return guess;
-}
-
 }  // namespace
 
 ScenarioFigures RunScenario(const sim::Scenario& scenario, const ScenarioRunOptions& options) {
@@ -290,14 +218,12 @@ ScenarioFigures RunScenario(const sim::Scenario& scenario, const ScenarioRunOpti
   if (!options.localization) return figures;
 
   // The localization drive in that map, from a guess.
-  std::vector<Eigen::Vector3d> prior_world;
-  prior_world.reserve(prior->points().size());
-  for (const Eigen::Vector3f& p : prior->points()) prior_world.push_back(p.cast<double>());
+  std::vector<Eigen::Vector3d> prior_world = prior->PointsWorld();
   prior.reset();
   const mapping::PriorMap map = mapping::BuildPriorMap(prior_world, config.prior_map);
   std::vector<Eigen::Vector3d>().swap(prior_world);
   const sim::ScenarioSimulator drive_b(scenario, site, sim::SessionId::kB);
-  const Eigen::Isometry3d guess = Guess(scenario, drive_b.motion().PoseAt(0));
+  const Eigen::Isometry3d guess = StartGuess(scenario, drive_b.motion().PoseAt(0));
   Tee tee_b;
   TruthTrack truth_b;
   tee_b.Add(&truth_b);
