@@ -3,14 +3,13 @@
 // while driving, the vehicle reappears 20 m on, moving) and a log that begins while the
 // vehicle drives, without a guess. What a user is promised: the vehicle is found again, no
 // wrong pose is ever accepted, and no pose more than 1 m off is published or written as valid.
-// Short drives keep a scenario near 30 s of CPU.
+// Short drives keep a case near 25 s of CPU.
 //
-// Disabled because the library does not meet it yet, on either scenario: after a cut of both
-// IMU and lidar the first scans back are given as valid while metres off (until
+// The moving start holds on both. The kidnap is a known defect, skipped visibly: after a cut of
+// both IMU and lidar the first scans back are given as valid while metres off (until
 // lost_after_scans bad scans declare the vehicle lost), and the search while moving does not
-// find the place again from the state propagated through the gap. The moving start passes.
-// docs/results.md ("Recovery: randomized benchmark") has the figures over 96 cases; run it with
-// --gtest_also_run_disabled_tests.
+// find the place again from the state propagated through the gap. docs/results.md ("Recovery:
+// randomized benchmark") has the figures over 96 cases.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -23,32 +22,41 @@ namespace {
 
 class Recovery : public ::testing::TestWithParam<uint64_t> {};
 
-TEST_P(Recovery, DISABLED_AKidnapAndAMovingStartAreFoundAgainWithoutAWrongPose) {
+// Runs `spec` on scenario `number` and checks what a user is promised.
+void ExpectRecovered(uint64_t number, const RecoveryCaseSpec& spec) {
   RecoveryRunOptions options;
   options.preset_dir = std::string(HYLO_SOURCE_DIR) + "/config/presets";
   options.max_drive_s = 45.0;
   options.draw.window_s = 20.0;
-  options.specs = {{RecoveryKind::kGapAll, 10.0, 20.0}, {RecoveryKind::kMovingStart, 16.0}};
-  const RecoveryScenario s = RunRecoveryScenario(sim::DrawScenario(GetParam()), options);
+  options.specs = {spec};
+  const RecoveryScenario s = RunRecoveryScenario(sim::DrawScenario(number), options);
   std::printf("scenario %llu: %s\n", static_cast<unsigned long long>(s.number), s.summary.c_str());
-  ASSERT_EQ(s.results.size(), 2u) << "the drive is too short for the cases";
-  for (const RecoveryResult& r : s.results) {
-    const RecoveryCase& c = r.recovery_case;
-    const RecoveryFigures& f = r.figures;
-    SCOPED_TRACE(ToString(c.kind));
-    std::printf(
-        "  %-12s %.1f m at %.1f m/s: %s %.1f s %.1f m, accepts %d (wrong %d), bad valid "
-        "%zu/%zu, worst valid %.2f m | %s\n",
-        ToString(c.kind).c_str(), c.distance_m, c.speed_mps,
-        f.recovered ? "recovered in" : "NOT recovered", f.time_s, f.distance_m, f.accepts,
-        f.wrong_accepts, f.bad_valid_live, f.bad_valid_finalized, f.worst_valid_error_m,
-        f.note.c_str());
-    ASSERT_FALSE(f.skipped) << f.note;
-    EXPECT_EQ(f.bad_valid_live, 0u) << "published as valid while > 1 m off";
-    EXPECT_EQ(f.bad_valid_finalized, 0u) << "written as valid while > 1 m off";
-    EXPECT_EQ(f.wrong_accepts, 0);
-    EXPECT_TRUE(f.recovered) << f.note;
-  }
+  ASSERT_EQ(s.results.size(), 1u) << "the drive is too short for the case";
+  const RecoveryResult& r = s.results.front();
+  const RecoveryCase& c = r.recovery_case;
+  const RecoveryFigures& f = r.figures;
+  std::printf(
+      "  %-12s %.1f m at %.1f m/s: %s %.1f s %.1f m, accepts %d (wrong %d), bad valid "
+      "%zu/%zu, worst valid %.2f m | %s\n",
+      ToString(c.kind).c_str(), c.distance_m, c.speed_mps,
+      f.recovered ? "recovered in" : "NOT recovered", f.time_s, f.distance_m, f.accepts,
+      f.wrong_accepts, f.bad_valid_live, f.bad_valid_finalized, f.worst_valid_error_m,
+      f.note.c_str());
+  ASSERT_FALSE(f.skipped) << f.note;
+  EXPECT_EQ(f.bad_valid_live, 0u) << "published as valid while > 1 m off";
+  EXPECT_EQ(f.bad_valid_finalized, 0u) << "written as valid while > 1 m off";
+  EXPECT_EQ(f.wrong_accepts, 0);
+  EXPECT_TRUE(f.recovered) << f.note;
+}
+
+TEST_P(Recovery, AMovingStartIsFoundWithoutAWrongPose) {
+  ExpectRecovered(GetParam(), {RecoveryKind::kMovingStart, 16.0});
+}
+
+TEST_P(Recovery, AKidnapIsFoundAgainWithoutAWrongPose) {
+  GTEST_SKIP() << "known defect: after a 20 m cut of IMU and lidar, poses metres off are given "
+                  "as valid and the place is not found again (docs/results.md, Recovery)";
+  ExpectRecovered(GetParam(), {RecoveryKind::kGapAll, 10.0, 20.0});
 }
 
 // A VLP-16 on an industrial IMU at 1.7 m/s; an RS-16 on a consumer IMU at 2.2 m/s (chosen for
