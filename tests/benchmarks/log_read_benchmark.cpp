@@ -10,6 +10,9 @@
 // >= ROS1 in messages per wall second; the CPU ratios are reported beside it.
 //
 //   hylo_log_read_benchmark [--duration S] [--repeat N] [--work DIR] [--json PATH] [--quick]
+//                           [--formats ros1,mcap-zstd,...]
+// --formats reads only those (for whole-process timings of one reader at a time); the ratios
+// to ROS1 need ros1 among them.
 
 #include <sys/resource.h>
 
@@ -37,7 +40,28 @@ struct Args {
   int repeat = 5;
   std::string work = "/tmp/hylo_log_read_bench";
   std::string json = "log_read_benchmark.json";
+  std::vector<logs::LogFormat> formats = {logs::LogFormat::kRos1, logs::LogFormat::kSqlite3,
+                                          logs::LogFormat::kMcap, logs::LogFormat::kMcapZstd,
+                                          logs::LogFormat::kMcapLz4};
 };
+
+// "ros1,mcap-zstd" -> the formats; false naming the first it does not know.
+bool ParseFormats(const std::string& text, std::vector<logs::LogFormat>* out, std::string* bad) {
+  out->clear();
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string name = text.substr(start, comma - start);
+    logs::LogFormat format;
+    if (!logs::ParseLogFormat(name, &format)) {
+      *bad = name;
+      return false;
+    }
+    out->push_back(format);
+    start = comma + 1;
+  }
+  return !out->empty();
+}
 
 double CpuSeconds() {
   rusage usage{};
@@ -113,21 +137,25 @@ int Main(int argc, char** argv) {
       args.work = value();
     } else if (a == "--json") {
       args.json = value();
+    } else if (a == "--formats") {
+      std::string bad;
+      if (!ParseFormats(value(), &args.formats, &bad)) {
+        std::cerr << "--formats: unknown format '" << bad << "'\n";
+        return 2;
+      }
     } else {
       std::cerr << "usage: hylo_log_read_benchmark [--duration S] [--repeat N] [--work DIR] "
-                   "[--json PATH] [--quick]\n";
+                   "[--json PATH] [--quick] [--formats ros1,mcap,...]\n";
       return 2;
     }
   }
   Report report;
   report.Set("session", "duration_s", args.duration_s);
   report.Set("session", "repeat", args.repeat);
-  const logs::LogFormat formats[] = {logs::LogFormat::kRos1, logs::LogFormat::kSqlite3,
-                                     logs::LogFormat::kMcap, logs::LogFormat::kMcapZstd,
-                                     logs::LogFormat::kMcapLz4};
   std::printf("%-10s %8s %11s %15s %9s %9s %13s %12s\n", "format", "MB", "MB/wall s",
               "messages/wall s", "wall s", "CPU s", "wall vs ROS1", "CPU vs ROS1");
-  for (const logs::LogFormat format : formats) {
+  const bool with_ros1 = args.formats.front() == logs::LogFormat::kRos1;
+  for (const logs::LogFormat format : args.formats) {
     const std::string log = SessionLog(args, format);
     const double mb = Bytes(log) / 1e6;
     const ReadFigures f = Read(log, args.repeat);
@@ -144,10 +172,18 @@ int Main(int argc, char** argv) {
     report.Set(section, "messages_per_wall_s", f.messages / f.wall_s);
     report.Set(section, "messages", f.messages);
     report.Set(section, "points", f.points);
-    std::printf("%-10s %8.1f %11.1f %15.0f %9.3f %9.3f %13.2f %12.2f\n",
-                logs::ToString(format).c_str(), mb, mb / f.wall_s, f.messages / f.wall_s,
-                f.wall_s, f.cpu_s, report.Get("read_ros1", "wall_s") / f.wall_s,
-                report.Get("read_ros1", "cpu_s") / cpu_s);
+    std::printf("%-10s %8.1f %11.1f %15.0f %9.3f %9.3f", logs::ToString(format).c_str(), mb,
+                mb / f.wall_s, f.messages / f.wall_s, f.wall_s, f.cpu_s);
+    if (with_ros1) {
+      std::printf(" %13.2f %12.2f", report.Get("read_ros1", "wall_s") / f.wall_s,
+                  report.Get("read_ros1", "cpu_s") / cpu_s);
+    }
+    std::printf("\n");
+  }
+  if (!with_ros1 || args.formats.size() != 5) {
+    report.Print(std::cout);
+    report.WriteJson(args.json);
+    return 0;
   }
   // The same messages in every format: > 1 is faster than ROS1.
   const double ros1_wall = report.Get("read_ros1", "messages_per_wall_s");
