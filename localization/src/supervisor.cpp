@@ -150,6 +150,16 @@ void LocalizationSupervisor::SetOnMap(bool on_map, int64_t t_ns,
            T_map_imu);
 }
 
+void LocalizationSupervisor::DataGap(int64_t t_ns, double gap_s,
+                                     const Eigen::Isometry3d& T_map_imu) {
+  if (!started_ || searching() || !on_map_ || lost_) return;
+  lost_ = true;
+  scans_until_retry_ = 0;
+  std::ostringstream os;
+  os << "no data for " << gap_s << " s: the pose propagated through the gap is checked first";
+  AddEvent(LocalizationEvent::Kind::kLost, t_ns, os.str(), T_map_imu);
+}
+
 bool LocalizationSupervisor::Supervise(int64_t t_ns, const ScanHealth& health,
                                        const estimation::NavState& state,
                                        const std::function<PointCloud()>& sweep_imu,

@@ -4,6 +4,7 @@
 
 #include <time.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <utility>
@@ -11,6 +12,7 @@
 #include "hylo/common/check.h"
 #include "hylo/common/option_checks.h"
 #include "hylo/common/time.h"
+#include "hylo/lie/isometry.h"
 
 namespace hylo::odometry {
 namespace {
@@ -184,6 +186,30 @@ bool OdometryPipeline::FollowStreamedPrior() {
   return true;
 }
 
+double OdometryPipeline::DataGapSeconds(int64_t scan_end_ns) {
+  // Three usual intervals: a scan or two dropped is tracked through as before; more is a gap.
+  constexpr double kGapIntervals = 3.0;
+  constexpr std::size_t kIntervalsKept = 15;
+  const int64_t interval = scan_end_ns - previous_scan_end_ns_;
+  const bool first = previous_scan_end_ns_ == 0;
+  previous_scan_end_ns_ = scan_end_ns;
+  if (first || interval <= 0) return 0.0;
+  double gap_s = 0.0;
+  if (recent_intervals_ns_.size() >= 5) {
+    std::vector<int64_t> sorted = recent_intervals_ns_;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const int64_t usual = sorted[sorted.size() / 2];
+    if (interval > kGapIntervals * usual) gap_s = NanosToSeconds(interval - usual);
+  }
+  if (gap_s == 0.0) {
+    recent_intervals_ns_.push_back(interval);
+    if (recent_intervals_ns_.size() > kIntervalsKept) {
+      recent_intervals_ns_.erase(recent_intervals_ns_.begin());
+    }
+  }
+  return gap_s;
+}
+
 bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) {
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start_ms = CpuMs();
@@ -247,6 +273,10 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
     }
     result->T_map_odom = supervisor_->T_map_odom();
   } else if (supervisor_) {
+    const double gap_s = DataGapSeconds(result->t_ns);
+    if (gap_s > 0.0) {
+      supervisor_->DataGap(result->t_ns, gap_s, lie::ToIsometry(result->state.T_map_imu()));
+    }
     // Health, loss and relocalization may replace the estimator's pose.
     if (supervisor_->Supervise(result->t_ns, result->health, result->state, sweep_imu, map_,
                                estimator_.get())) {

@@ -111,6 +111,11 @@ class LocalizationSupervisor {
   void SetOnMap(bool on_map, int64_t t_ns, const Eigen::Isometry3d& T_map_imu);
   bool on_map() const { return on_map_; }
 
+  /// The scan ending at `t_ns` comes after `gap_s` without data: the state propagated through
+  /// the gap is not trusted until this scan's health confirms it, and relocalization starts at
+  /// once if it does not (rather than after lost_after_scans bad scans given as valid).
+  /// Nothing before the start, while searching or off the prior.
+  void DataGap(int64_t t_ns, double gap_s, const Eigen::Isometry3d& T_map_imu);
   bool lost() const { return lost_; }
   /// True once a start pose was accepted (a later search is a relocalization).
   bool started() const { return started_; }

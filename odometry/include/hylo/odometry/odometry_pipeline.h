@@ -168,6 +168,11 @@ class OdometryPipeline {
   std::string message_;
   PipelineCounters counters_;
   std::set<int64_t> untrusted_t_ns_;  // scans not kValid whose states are not finalized yet
+  // A data gap: the interval since the previous scan against the usual one (the median of
+  // the recent intervals), so that it holds for any scan rate.
+  double DataGapSeconds(int64_t scan_end_ns);
+  int64_t previous_scan_end_ns_ = 0;
+  std::vector<int64_t> recent_intervals_ns_;
 };
 
 }  // namespace hylo::odometry
