@@ -245,6 +245,8 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
   if (!result->update.applied) ++counters_.scans_not_applied;
   if (result->update.degenerate) ++counters_.scans_degenerate;
   result->t_ns = estimator_->state().t_ns;
+  // Every scan's interval counts, searching or not: a search's scans are not a gap after it.
+  const double gap_s = DataGapSeconds(result->t_ns);
   result->state = estimator_->state();
   result->pose_covariance = estimator_->PoseCovariance();
   result->health = localization::EvaluateScanHealth(result->update, options_.localization);
@@ -273,7 +275,6 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
     }
     result->T_map_odom = supervisor_->T_map_odom();
   } else if (supervisor_) {
-    const double gap_s = DataGapSeconds(result->t_ns);
     if (gap_s > 0.0) {
       supervisor_->DataGap(result->t_ns, gap_s, lie::ToIsometry(result->state.T_map_imu()));
     }
