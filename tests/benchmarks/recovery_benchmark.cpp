@@ -10,10 +10,13 @@
 //   hylo_recovery_benchmark [--scenarios 0-23] [--half even|odd|all] [--cases 6] [--seed S]
 //                           [--window S] [--max-drive S] [--backends ieskf|sliding_window|both]
 //                           [--background] [--jobs N] [--json PATH] [--preset-dir DIR]
-//                           [--quick] [--list] [--summarize A.json...]
+//                           [--kinds K,K] [--trace DIR] [--quick] [--list]
+//                           [--summarize A.json...]
 // --background searches on a worker thread as the ROS node does (localization.search.background;
 // off by default, as for a log read from a file, whose results then do not depend on the
 // machine's load): the scan path's times while searching are then a live node's.
+// --kinds gap_all,gap_lidar,moving_start runs only the drawn cases of those kinds (same draws).
+// --trace DIR writes every case's run scan by scan and its events (recovery_trace.h).
 // --list prints the cases each scenario would run (where and when), simulating nothing.
 // --jobs N runs N scenarios at once, each in a process of its own (this program again, with
 // one scenario), and summarizes their JSON as one run.
@@ -27,6 +30,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -115,6 +119,16 @@ bool Parse(int argc, char** argv, Args* args) {
       args->json_path = argv[++i];
     } else if (a == "--preset-dir" && has) {
       args->run.preset_dir = argv[++i];
+    } else if (a == "--kinds" && has) {
+      std::stringstream names(argv[++i]);
+      std::string name;
+      while (std::getline(names, name, ',')) {
+        RecoveryKind kind;
+        if (!hylo::testing::ParseRecoveryKind(name, &kind)) return false;
+        args->run.kinds.push_back(kind);
+      }
+    } else if (a == "--trace" && has) {
+      args->run.trace_dir = argv[++i];
     } else if (a == "--quick") {
       args->quick = true;
     } else if (a == "--list") {
@@ -288,7 +302,8 @@ int main(int argc, char** argv) {
                  "usage: hylo_recovery_benchmark [--scenarios 0-23] [--half even|odd|all] "
                  "[--cases 6] [--seed S] [--window S] [--max-drive S] "
                  "[--backends ieskf|sliding_window|both] [--background] [--jobs N] [--json PATH] "
-                 "[--preset-dir DIR] [--quick] [--list] [--summarize A.json...]\n");
+                 "[--preset-dir DIR] [--kinds K,K] [--trace DIR] [--quick] [--list] "
+                 "[--summarize A.json...]\n");
     return 2;
   }
   try {

@@ -1,6 +1,7 @@
 // One scenario's recovery cases: the prior, the cases' drive, every case's session, the scores.
 #include "localization/recovery_scenario.h"
 
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
 
@@ -8,6 +9,7 @@
 #include "hylo/common/time.h"
 #include "hylo/mapping/prior_map.h"
 #include "hylo/sim_io/scenario_writer.h"
+#include "localization/recovery_trace.h"
 
 namespace hylo::testing {
 namespace {
@@ -26,7 +28,18 @@ mapping::PriorMap TruePosePrior(const sim::Scenario& scenario, const sim::Site& 
 std::vector<RecoveryCase> CasesFor(const sim::Scenario& scenario, const DriveTruth& truth,
                                    const RecoveryRunOptions& options) {
   if (options.specs.empty()) {
-    return DrawRecoveryCases(scenario.number, truth, scenario.site.yard_size_m, options.draw);
+    std::vector<RecoveryCase> cases =
+        DrawRecoveryCases(scenario.number, truth, scenario.site.yard_size_m, options.draw);
+    if (!options.kinds.empty()) {
+      std::vector<RecoveryCase> kept;
+      for (const RecoveryCase& c : cases) {
+        if (std::find(options.kinds.begin(), options.kinds.end(), c.kind) != options.kinds.end()) {
+          kept.push_back(c);
+        }
+      }
+      cases = kept;
+    }
+    return cases;
   }
   std::vector<RecoveryCase> cases;
   for (std::size_t k = 0; k < options.specs.size(); ++k) {
@@ -93,7 +106,7 @@ RecoveryScenario RunRecoveryScenario(const sim::Scenario& drawn,
   const std::vector<RecoveryCase> cases = CasesFor(scenario, truth, options);
   const std::size_t wanted =
       options.specs.empty() ? static_cast<std::size_t>(options.draw.cases) : options.specs.size();
-  out.cases_left_out = static_cast<int>(wanted - cases.size());
+  out.cases_left_out = options.kinds.empty() ? static_cast<int>(wanted - cases.size()) : 0;
 
   const Eigen::Isometry3d guess = StartGuess(scenario, truth.PoseAt(truth.start_ns()));
   Tee tee;
@@ -115,6 +128,10 @@ RecoveryScenario RunRecoveryScenario(const sim::Scenario& drawn,
   for (std::size_t k = 0; k < runs.size(); ++k) {
     runs[k]->Finish();
     out.results[k].figures = ScoreRecovery(*runs[k], truth, options.score);
+    if (!options.trace_dir.empty()) {
+      WriteRecoveryTrace(*runs[k], truth, estimation::ToString(out.results[k].backend),
+                         options.trace_dir);
+    }
   }
   return out;
 }

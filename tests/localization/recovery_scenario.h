@@ -37,6 +37,11 @@ struct RecoveryRunOptions {
   std::vector<RecoveryCaseSpec> specs;  ///< not empty: these cases instead of drawn ones
   double max_drive_s = 0.0;             ///< > 0: both drives end after this much driving, s
   double prior_voxel_m = 0.1;  ///< uniform sampling of the true-pose map before thinning, m
+  /// Not empty: only drawn cases of these kinds are run (the others are drawn and dropped, so
+  /// a case keeps its index and place).
+  std::vector<RecoveryKind> kinds;
+  /// Not empty: every case's run is written there scan by scan (recovery_trace.h).
+  std::string trace_dir;
   /// Changes every run's options after the sheet's (e.g. a setting being chosen).
   std::function<void(odometry::OdometryPipelineOptions*)> adjust;
 };
