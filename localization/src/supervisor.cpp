@@ -150,13 +150,25 @@ void LocalizationSupervisor::SetOnMap(bool on_map, int64_t t_ns,
            T_map_imu);
 }
 
-void LocalizationSupervisor::DataGap(int64_t t_ns, double gap_s,
+void LocalizationSupervisor::DataGap(int64_t t_ns, double gap_s, bool imu_too,
                                      const Eigen::Isometry3d& T_map_imu) {
   if (!started_ || searching() || !on_map_ || lost_) return;
   lost_ = true;
   scans_until_retry_ = 0;
+  // Blind across the gap, the vehicle may be anywhere it could drive meanwhile: a fit near
+  // where it was (this scan's, or a relocalization's) would as readily be a look-alike bay as
+  // the place. The whole map is searched instead, where the global localizer can tell.
+  search_at_once_ = imu_too && CanSearch();
   std::ostringstream os;
-  os << "no data for " << gap_s << " s: the pose propagated through the gap is checked first";
+  os << "no data for " << gap_s << " s: ";
+  if (search_at_once_) {
+    os << "no IMU either, so the state restarts where the gap began (levelled by the "
+          "accelerometer, velocity unknown) and the place is searched for over the whole map";
+  } else {
+    os << (imu_too ? "no IMU either: the state restarted where the gap began"
+                   : "the pose propagated through the gap")
+       << " is checked first";
+  }
   AddEvent(LocalizationEvent::Kind::kLost, t_ns, os.str(), T_map_imu);
 }
 
@@ -168,7 +180,7 @@ bool LocalizationSupervisor::Supervise(int64_t t_ns, const ScanHealth& health,
   if (!on_map_) return false;  // no prior here to judge the scan by, or to relocalize in
   if (!health.good) ++scans_bad_health_;
   bad_scans_in_row_ = health.good ? 0 : bad_scans_in_row_ + 1;
-  if (lost_ && health.good) lost_ = false;
+  if (lost_ && health.good && !search_at_once_) lost_ = false;
   if (!lost_ && bad_scans_in_row_ >= options_.lost_after_scans) {
     lost_ = true;
     scans_until_retry_ = 0;
@@ -199,7 +211,11 @@ bool LocalizationSupervisor::Supervise(int64_t t_ns, const ScanHealth& health,
   // map, again every relocalize_retry_scans.
   const PointCloud sweep = sweep_imu();
   const Eigen::Isometry3d here = lie::ToIsometry(estimator->state().T_map_imu());
-  if (Relocalize(sweep, map, here, /*allow_global=*/!CanSearch(), estimator)) return true;
+  const bool local_first = !search_at_once_;
+  search_at_once_ = false;
+  if (local_first && Relocalize(sweep, map, here, /*allow_global=*/!CanSearch(), estimator)) {
+    return true;
+  }
   if (CanSearch()) {
     // The state that lost the map (after a gap, a slip or a jump) is not trusted to carry the
     // provisional frame: its velocity and attitude start again as a moving start's, wide
@@ -209,7 +225,9 @@ bool LocalizationSupervisor::Supervise(int64_t t_ns, const ScanHealth& health,
     estimator->Initialize(restart, uncertainty_.MovingCovariance(restart));
     // The first attempt at once: a sweep alone often places a vehicle that was carried off.
     BeginSearch(restart, sweep, /*is_start=*/false, /*first_attempt_scans=*/1,
-                "lost: " + events_.back().message);
+                "lost: " + (local_first ? events_.back().message
+                                        : std::string("no match near the last pose is tried "
+                                                      "after a gap without IMU")));
     return false;
   }
   scans_until_retry_ = options_.relocalize_retry_scans;

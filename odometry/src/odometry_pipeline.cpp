@@ -186,34 +186,11 @@ bool OdometryPipeline::FollowStreamedPrior() {
   return true;
 }
 
-double OdometryPipeline::DataGapSeconds(int64_t scan_end_ns) {
-  // Three usual intervals: a scan or two dropped is tracked through as before; more is a gap.
-  constexpr double kGapIntervals = 3.0;
-  constexpr std::size_t kIntervalsKept = 15;
-  const int64_t interval = scan_end_ns - previous_scan_end_ns_;
-  const bool first = previous_scan_end_ns_ == 0;
-  previous_scan_end_ns_ = scan_end_ns;
-  if (first || interval <= 0) return 0.0;
-  double gap_s = 0.0;
-  if (recent_intervals_ns_.size() >= 5) {
-    std::vector<int64_t> sorted = recent_intervals_ns_;
-    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    const int64_t usual = sorted[sorted.size() / 2];
-    if (interval > kGapIntervals * usual) gap_s = NanosToSeconds(interval - usual);
-  }
-  if (gap_s == 0.0) {
-    recent_intervals_ns_.push_back(interval);
-    if (recent_intervals_ns_.size() > kIntervalsKept) {
-      recent_intervals_ns_.erase(recent_intervals_ns_.begin());
-    }
-  }
-  return gap_s;
-}
-
 bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) {
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start_ms = CpuMs();
   if (map_.streamed() && !FollowStreamedPrior()) return false;
+  const bool blind_gap = RestartAfterBlindGap(group->scan.end_t_ns, group->imu);
   std::vector<int64_t> knots;
   for (const ImuSample& s : group->imu) {
     estimator_->AddImu(s);
@@ -238,15 +215,21 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
 
   const auto update_start = std::chrono::steady_clock::now();
   const bool searching = supervisor_ && supervisor_->searching();
-  result->update =
-      estimator_->Update(scan.registration, searching ? supervisor_->search_matcher() : matcher_);
+  // After a gap without IMU the pose is unknown: registering the scan near where the gap
+  // began would pull the restarted state (its attitude, its biases) toward whatever fits
+  // there. It is propagated only; the supervisor searches for the place.
+  estimation::DeskewedScan nothing;
+  nothing.t_ns = scan.registration.t_ns;
+  result->update = estimator_->Update(blind_gap ? nothing : scan.registration,
+                                      searching ? supervisor_->search_matcher() : matcher_);
+  if (blind_gap) result->update.message = "not registered: the first scan after a gap without IMU";
   result->update_ms = MsSince(update_start);
   ++counters_.scans_processed;
   if (!result->update.applied) ++counters_.scans_not_applied;
   if (result->update.degenerate) ++counters_.scans_degenerate;
   result->t_ns = estimator_->state().t_ns;
   // Every scan's interval counts, searching or not: a search's scans are not a gap after it.
-  const double gap_s = DataGapSeconds(result->t_ns);
+  const double gap_s = scan_clock_.Tick(result->t_ns);
   result->state = estimator_->state();
   result->pose_covariance = estimator_->PoseCovariance();
   result->health = localization::EvaluateScanHealth(result->update, options_.localization);
@@ -276,7 +259,8 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
     result->T_map_odom = supervisor_->T_map_odom();
   } else if (supervisor_) {
     if (gap_s > 0.0) {
-      supervisor_->DataGap(result->t_ns, gap_s, lie::ToIsometry(result->state.T_map_imu()));
+      supervisor_->DataGap(result->t_ns, gap_s, blind_gap,
+                           lie::ToIsometry(result->state.T_map_imu()));
     }
     // Health, loss and relocalization may replace the estimator's pose.
     if (supervisor_->Supervise(result->t_ns, result->health, result->state, sweep_imu, map_,

@@ -5,9 +5,11 @@
 // accumulated for the ICP start until init_scans static scans are there or the vehicle moves.
 // Without an IMU nothing says the vehicle is at rest: the first scan starts the run (SLAM at
 // the identity, localization from the first scan alone) and is then processed as any other.
+#include <cmath>
 #include <stdexcept>
 
 #include "hylo/common/check.h"
+#include "hylo/localization/icp_initializer.h"
 #include "hylo/odometry/odometry_pipeline.h"
 
 namespace hylo::odometry {
@@ -155,6 +157,47 @@ void OdometryPipeline::StartMoving(const MeasurementGroup& group,
   }
   for (const ImuSample& s : imu_after) estimator_->AddImu(s);
   status_ = Status::kRunning;
+}
+
+bool OdometryPipeline::RestartAfterBlindGap(int64_t scan_end_ns, const std::vector<ImuSample>& imu) {
+  if (!supervisor_ || !supervisor_->started() || supervisor_->searching() ||
+      !supervisor_->on_map() || !options_.imu.enabled || imu.empty() ||
+      scan_clock_.GapBefore(scan_end_ns) == 0.0) {
+    return false;  // a lidar that kept coming corrected the state through an IMU gap
+  }
+  // The estimator's state is the last scan's, the last one corrected: without IMU samples
+  // since then for longer than a data gap, it would be propagated blind across the gap (by
+  // samples interpolated over it), and its attitude, velocity and position with it.
+  const estimation::NavState& before = estimator_->state();
+  const int64_t usual_ns = scan_clock_.UsualIntervalNs();
+  if (usual_ns == 0) return false;
+  // The longest silence since that scan (the samples may begin before the gap), and the first
+  // sample after it.
+  std::size_t after = 0;
+  int64_t longest_ns = imu.front().t_ns - before.t_ns;
+  for (std::size_t k = 1; k < imu.size(); ++k) {
+    if (imu[k].t_ns - imu[k - 1].t_ns > longest_ns) {
+      longest_ns = imu[k].t_ns - imu[k - 1].t_ns;
+      after = k;
+    }
+  }
+  if (longest_ns <= ScanIntervalClock::kGapIntervals * usual_ns) return false;
+  // What the gap leaves known: the biases, and the heading and place it began at. Roll and
+  // pitch come again from the accelerometer (gravity, plus whatever the vehicle accelerates,
+  // as in a start on the move), the velocity is unknown: the moving start's uncertainty.
+  Eigen::Vector3d specific_force_imu = Eigen::Vector3d::Zero();
+  for (std::size_t k = after; k < imu.size(); ++k) {
+    specific_force_imu += imu[k].accel_imu / static_cast<double>(imu.size() - after);
+  }
+  estimation::NavState x = before;
+  x.t_ns = imu[after].t_ns;
+  const Eigen::Matrix3d R = before.R_map_imu.Matrix();
+  const Eigen::Isometry3d levelled = localization::GuessFromGravity(
+      before.p_map_imu, std::atan2(R(1, 0), R(0, 0)), specific_force_imu);
+  x.R_map_imu = lie::SO3d(Eigen::Quaterniond(levelled.rotation()));
+  x.v_map_imu.setZero();
+  estimator_->Initialize(x, options_.initial_uncertainty.MovingCovariance(x));
+  return true;
 }
 
 PointCloud OdometryPipeline::ScanInImu(const MeasurementGroup& group) {

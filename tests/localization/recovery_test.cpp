@@ -5,11 +5,7 @@
 // wrong pose is ever accepted, and no pose more than 1 m off is published or written as valid.
 // Short drives keep a case near 25 s of CPU.
 //
-// The moving start holds on both. The kidnap is a known defect, skipped visibly: after a cut of
-// both IMU and lidar the first scans back are given as valid while metres off (until
-// lost_after_scans bad scans declare the vehicle lost), and the search while moving does not
-// find the place again from the state propagated through the gap. docs/results.md ("Recovery:
-// randomized benchmark") has the figures over 96 cases.
+// docs/results.md ("Recovery: randomized benchmark") has the figures over many more cases.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -54,8 +50,6 @@ TEST_P(Recovery, AMovingStartIsFoundWithoutAWrongPose) {
 }
 
 TEST_P(Recovery, AKidnapIsFoundAgainWithoutAWrongPose) {
-  GTEST_SKIP() << "known defect: after a 20 m cut of IMU and lidar, poses metres off are given "
-                  "as valid and the place is not found again (docs/results.md, Recovery)";
   ExpectRecovered(GetParam(), {RecoveryKind::kGapAll, 10.0, 20.0});
 }
 

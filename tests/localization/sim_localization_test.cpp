@@ -363,7 +363,9 @@ TEST(SimRelocalization, AKidnappedVehicleIsFoundAgainOverTheWholeMap) {
     }
     void OnScan(const LidarScan& s) override {
       LidarScan moved = s;
-      if (Keep(&moved.t_ns)) LocalizationSink::OnScan(moved);
+      if (!Keep(&moved.t_ns)) return;
+      moved.end_t_ns = moved.t_ns + (s.end_t_ns - s.t_ns);  // the whole sweep moves
+      LocalizationSink::OnScan(moved);
     }
     void OnTruth(const sim::TruthSample& t) override {
       sim::TruthSample moved = t;

@@ -114,8 +114,11 @@ class LocalizationSupervisor {
   /// The scan ending at `t_ns` comes after `gap_s` without data: the state propagated through
   /// the gap is not trusted until this scan's health confirms it, and relocalization starts at
   /// once if it does not (rather than after lost_after_scans bad scans given as valid).
-  /// Nothing before the start, while searching or off the prior.
-  void DataGap(int64_t t_ns, double gap_s, const Eigen::Isometry3d& T_map_imu);
+  /// `imu_too`: the IMU was silent as well and the estimator was restarted at the gap's start
+  /// (the event says so); the vehicle may then be anywhere it could have driven, and the whole
+  /// map is searched (when it can be) without trusting a fit near the gap's start. Nothing
+  /// before the start, while searching or off the prior.
+  void DataGap(int64_t t_ns, double gap_s, bool imu_too, const Eigen::Isometry3d& T_map_imu);
   bool lost() const { return lost_; }
   /// True once a start pose was accepted (a later search is a relocalization).
   bool started() const { return started_; }
@@ -179,6 +182,7 @@ class LocalizationSupervisor {
   std::string last_attempt_;        // the last attempt's verdict, for a search that gives up
   bool search_is_start_ = false;          // the search began at the start (not on request)
   int search_first_attempt_scans_ = 0;    // see BeginSearch
+  bool search_at_once_ = false;  // lost after a gap without IMU: no local relocalization
   int bad_scans_in_row_ = 0;
   int scans_until_retry_ = 0;
   bool lost_ = false;

@@ -22,6 +22,7 @@
 #include "hylo/localization/global_search.h"
 #include "hylo/localization/localization.h"
 #include "hylo/localization/supervisor.h"
+#include "hylo/odometry/data_gap.h"
 #include "hylo/odometry/measurement_queue.h"
 #include "hylo/odometry/scan_preprocessor.h"
 #include "hylo/odometry/scan_result.h"
@@ -145,6 +146,10 @@ class OdometryPipeline {
   PointCloud ScanInImu(const MeasurementGroup& group);  // cleaned, IMU frame
   void AddStaticScan(const MeasurementGroup& group);
   void StartLocalization(const MeasurementGroup& group);
+  // Localizing, before the scan ending at `scan_end_ns` with IMU data `imu`, after a gap in
+  // both lidar and IMU: restarts the estimator for the supervisor to check (true) instead of
+  // tracking from a state propagated blind through the gap.
+  bool RestartAfterBlindGap(int64_t scan_end_ns, const std::vector<ImuSample>& imu);
   void Fail(const std::string& why);
   // A tiled prior before each scan: the loader's news, its failures, on or off the tiles.
   bool FollowStreamedPrior();
@@ -168,11 +173,7 @@ class OdometryPipeline {
   std::string message_;
   PipelineCounters counters_;
   std::set<int64_t> untrusted_t_ns_;  // scans not kValid whose states are not finalized yet
-  // A data gap: the interval since the previous scan against the usual one (the median of
-  // the recent intervals), so that it holds for any scan rate.
-  double DataGapSeconds(int64_t scan_end_ns);
-  int64_t previous_scan_end_ns_ = 0;
-  std::vector<int64_t> recent_intervals_ns_;
+  ScanIntervalClock scan_clock_;  // gaps in the data (localization)
 };
 
 }  // namespace hylo::odometry
