@@ -83,9 +83,15 @@ bool LocalizationSupervisor::Start(estimation::NavState start, bool gravity_know
     icp = icp_initializer_.Initialize(static_.points_imu, map, *guess);
     verdict = icp.message;
   }
+  // A live vehicle's scans must not wait behind a global search of a second or more: with
+  // attempts beside the scan path, the start searches as a search while moving does, from the
+  // static scans, its first attempt at once.
+  const bool search_beside = options_.search.background && CanSearch();
   if (!icp.accepted && global_->enabled()) {
     verdict = (guess ? "guess rejected (" + verdict + "), then " : std::string()) +
-              "global localization " + StartGlobally(start, gravity_known, map, &icp);
+              "global localization " +
+              (search_beside ? std::string("beside the scan path")
+                             : StartGlobally(start, gravity_known, map, &icp));
   } else if (!guess) {
     verdict = "no guess and " + global_->why_unavailable();
   }
@@ -97,7 +103,8 @@ bool LocalizationSupervisor::Start(estimation::NavState start, bool gravity_know
     start.p_map_imu.setZero();
     start.v_map_imu.setZero();
     estimator->Initialize(start, uncertainty_.SlamCovariance());
-    BeginSearch(start, static_points_imu, /*is_start=*/true, /*first_attempt_scans=*/0, verdict);
+    BeginSearch(start, static_points_imu, /*is_start=*/true,
+                /*first_attempt_scans=*/search_beside ? 1 : 0, verdict);
     *why = "no start pose yet (" + std::to_string(scans) + " static scans): " + verdict;
     return false;
   }

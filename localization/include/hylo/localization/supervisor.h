@@ -62,7 +62,9 @@ class LocalizationSupervisor {
   /// localizer searches the whole map (global_enabled). False with *why when no pose was
   /// accepted (rejected, ambiguous or not found: the reason says which); when the global
   /// localizer ran and options.search is enabled, searching() is then true and `estimator`
-  /// runs in the search frame (see Search).
+  /// runs in the search frame (see Search). With options.search.background the whole-map
+  /// search is not made here: searching() is true and its first attempt, on the static scans,
+  /// runs beside the scan path from the next scan on.
   bool Start(estimation::NavState start, bool gravity_known, const registration::NeighborSearch& map,
              estimation::Estimator* estimator, std::string* why);
 
