@@ -26,16 +26,20 @@ SearchAttempt BackgroundSearch::Run(const PointCloud& cloud_imu, const PointClou
                                     SearchAttempt attempt) const {
   attempt.points = cloud_imu.size();
   attempt.result = search_.Localize(cloud_imu, R_level_imu, map_);
-  if (attempt.result.status == GlobalStatus::kAccepted || recent_imu.empty()) return attempt;
-  GlobalLocalizationResult recent = search_.Localize(recent_imu, R_level_imu, map_);
-  if (recent.status == GlobalStatus::kAccepted) {
-    recent.elapsed_s += attempt.result.elapsed_s;
-    attempt.result = std::move(recent);
-    attempt.from_recent = true;
-    attempt.points = recent_imu.size();
-  } else {
-    attempt.result.message += "; last scans alone: " + recent.message;
-    attempt.result.elapsed_s += recent.elapsed_s;
+  if (attempt.result.status != GlobalStatus::kAccepted && !recent_imu.empty()) {
+    GlobalLocalizationResult recent = search_.Localize(recent_imu, R_level_imu, map_);
+    if (recent.status == GlobalStatus::kAccepted) {
+      recent.elapsed_s += attempt.result.elapsed_s;
+      attempt.result = std::move(recent);
+      attempt.from_recent = true;
+      attempt.points = recent_imu.size();
+    } else {
+      attempt.result.message += "; last scans alone: " + recent.message;
+      attempt.result.elapsed_s += recent.elapsed_s;
+    }
+  }
+  if (attempt.result.status == GlobalStatus::kAccepted && !recent_imu.empty()) {
+    attempt.recent_refinement = refiner_.Initialize(recent_imu, map_, attempt.result.T_map_imu);
   }
   return attempt;
 }

@@ -63,10 +63,11 @@ LocalizationSupervisor::SearchStep LocalizationSupervisor::Search(
   const bool due =
       search_->Add(sweep_imu, map_points_search, T_search_imu, search_first_attempt_scans_);
   if (!background_) {
-    background_ = std::make_unique<BackgroundSearch>(*global_, map, options_.search.background);
+    background_ = std::make_unique<BackgroundSearch>(*global_, icp_initializer_, map,
+                                                     options_.search.background);
   }
   if (std::optional<SearchAttempt> done = background_->TakeFinished()) {
-    if (Conclude(*done, map, estimator)) return SearchStep::kLocalized;
+    if (Conclude(*done, estimator)) return SearchStep::kLocalized;
   }
   std::optional<Eigen::Isometry3d> guess;
   guess.swap(relocalize_request_);
@@ -95,7 +96,7 @@ LocalizationSupervisor::SearchStep LocalizationSupervisor::Search(
                          LevellingRotation(T_search_imu.linear()), attempt);
       // On the scan thread the attempt has finished: its verdict is applied at once.
       if (std::optional<SearchAttempt> done = background_->TakeFinished()) {
-        if (Conclude(*done, map, estimator)) return SearchStep::kLocalized;
+        if (Conclude(*done, estimator)) return SearchStep::kLocalized;
       }
     }
   }
@@ -113,7 +114,6 @@ LocalizationSupervisor::SearchStep LocalizationSupervisor::Search(
 }
 
 bool LocalizationSupervisor::Conclude(const SearchAttempt& attempt,
-                                      const registration::NeighborSearch& map,
                                       estimation::Estimator* estimator) {
   const GlobalLocalizationResult& r = attempt.result;
   std::ostringstream os;
@@ -127,23 +127,20 @@ bool LocalizationSupervisor::Conclude(const SearchAttempt& attempt,
              attempt.T_search_imu);
     return false;
   }
-  // The attempt placed the search frame in the map as it was at the attempt's scan; the
-  // odometry since then carries that to now. The last scans alone, free of the drift the
-  // search's odometry gathered farther back, then place the vehicle now (the attempt's pose
-  // is kept when they fail: a moving vehicle's few scans can be too sparse on their own).
-  const Eigen::Isometry3d T_map_search = r.T_map_imu * attempt.T_search_imu.inverse();
-  const Eigen::Isometry3d T_map_imu_now = T_map_search * T_search_imu;
-  const IcpInitializerResult recent =
-      icp_initializer_.Initialize(search_->RecentInImu(T_search_imu), map, T_map_imu_now);
+  // The attempt placed the vehicle in the map at the attempt's scan: the last scans alone,
+  // free of the drift the search's odometry gathered farther back, refined that place (kept
+  // when accepted; a moving vehicle's few scans can be too sparse on their own). The search
+  // frame's odometry since that scan, centimetres over the seconds an attempt takes, carries
+  // it to now.
+  const IcpInitializerResult& recent = attempt.recent_refinement;
+  const Eigen::Isometry3d T_map_imu_then = recent.accepted ? recent.T_map_imu : r.T_map_imu;
+  const Eigen::Isometry3d T_map_imu_now =
+      T_map_imu_then * attempt.T_search_imu.inverse() * T_search_imu;
   if (attempt.from_recent) os << " on the last " << options_.init_scans << " scans alone";
-  if (recent.accepted) {
-    os << "; last " << options_.init_scans << " scans: " << recent.message;
-    EndSearch(recent.T_map_imu, estimator, os.str(), recent);
-  } else {
-    IcpInitializerResult moved = r.refinement;
-    moved.T_map_imu = T_map_imu_now;
-    EndSearch(T_map_imu_now, estimator, os.str(), moved);
-  }
+  IcpInitializerResult verdict = recent.accepted ? recent : r.refinement;
+  if (recent.accepted) os << "; last " << options_.init_scans << " scans: " << recent.message;
+  verdict.T_map_imu = T_map_imu_now;
+  EndSearch(T_map_imu_now, estimator, os.str(), verdict);
   return true;
 }
 

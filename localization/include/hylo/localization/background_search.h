@@ -18,6 +18,7 @@
 
 #include "hylo/common/point_types.h"
 #include "hylo/localization/global_search.h"
+#include "hylo/localization/icp_initializer.h"
 #include "hylo/registration/neighbor_search.h"
 
 namespace hylo::localization {
@@ -28,6 +29,9 @@ struct SearchAttempt {
   bool from_recent = false;  ///< placed by the last scans alone
   Eigen::Isometry3d T_search_imu = Eigen::Isometry3d::Identity();  ///< at the attempt's scan
   int64_t t_ns = 0;                                                ///< that scan's time, ns
+  /// An accepted attempt: the last scans alone registered around its pose (plane steps
+  /// included), at the attempt's scan; its pose is the one to keep when accepted.
+  IcpInitializerResult recent_refinement;
   std::size_t points = 0;                                          ///< of the attempt's cloud
   double distance_m = 0.0;  ///< the search's travel by then, m
   int scans = 0;            ///< the search's scans by then
@@ -36,11 +40,11 @@ struct SearchAttempt {
 
 class BackgroundSearch {
  public:
-  /// `search` and `map` must outlive this object. `on_worker`: attempts run on a worker
-  /// thread; false: on the caller's, each finished when Start returns.
-  BackgroundSearch(const GlobalSearch& search, const registration::NeighborSearch& map,
-                   bool on_worker)
-      : search_(search), map_(map), on_worker_(on_worker) {}
+  /// `search`, `refiner` and `map` must outlive this object. `on_worker`: attempts run on a
+  /// worker thread; false: on the caller's, each finished when Start returns.
+  BackgroundSearch(const GlobalSearch& search, const IcpInitializer& refiner,
+                   const registration::NeighborSearch& map, bool on_worker)
+      : search_(search), refiner_(refiner), map_(map), on_worker_(on_worker) {}
   /// Waits for an attempt still running.
   ~BackgroundSearch() { Wait(); }
   BackgroundSearch(const BackgroundSearch&) = delete;
@@ -50,7 +54,9 @@ class BackgroundSearch {
   /// `R_level_imu`; `attempt` carries its bookkeeping. When that cloud places nothing,
   /// `recent_imu` (the last scans alone, same frame) is tried: the accumulated cloud is the
   /// more telling one while the provisional odometry holds, the recent scans carry little of
-  /// its drift when it does not. False while an attempt runs or its verdict is not taken.
+  /// its drift when it does not. An accepted place is then refined on `recent_imu` (the
+  /// refiner's ICP), so that the scan thread only composes the verdict with the odometry
+  /// since the attempt's scan. False while an attempt runs or its verdict is not taken.
   bool Start(PointCloud cloud_imu, PointCloud recent_imu, const Eigen::Matrix3d& R_level_imu,
              SearchAttempt attempt);
   /// True while an attempt runs.
@@ -65,6 +71,7 @@ class BackgroundSearch {
   void Wait();
 
   const GlobalSearch& search_;
+  const IcpInitializer& refiner_;
   const registration::NeighborSearch& map_;
   const bool on_worker_;
   std::future<SearchAttempt> running_;     // on the worker

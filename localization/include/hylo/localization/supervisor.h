@@ -149,10 +149,10 @@ class LocalizationSupervisor {
   // `first_attempt_scans` scans (0: once the vehicle has moved retry_m).
   void BeginSearch(const estimation::NavState& x, const PointCloud& points_imu, bool is_start,
                    int first_attempt_scans, const std::string& reason);
-  // A finished global attempt: accepted, it places the search frame in the map and the last
-  // scans refine the pose now; otherwise an event says why. True when the search ended.
-  bool Conclude(const SearchAttempt& attempt, const registration::NeighborSearch& map,
-                estimation::Estimator* estimator);
+  // A finished global attempt: accepted, its place (refined on the last scans) is carried to
+  // now by the search frame's odometry; otherwise an event says why. True when the search
+  // ended.
+  bool Conclude(const SearchAttempt& attempt, estimation::Estimator* estimator);
   // The search found the vehicle at `T_map_imu`: the estimator goes on in the map.
   void EndSearch(const Eigen::Isometry3d& T_map_imu, estimation::Estimator* estimator,
                  const std::string& verdict, const IcpInitializerResult& icp);
