@@ -273,6 +273,7 @@ bool LocalizationSupervisor::Relocalize(const PointCloud& sweep_imu,
   T_map_odom_ = x.T_map_imu() * T_odom_imu_before.Inverse();
   bad_scans_in_row_ = 0;
   lost_ = false;
+  search_at_once_ = false;
   AddEvent(LocalizationEvent::Kind::kRelocalized, x.t_ns, verdict, icp.T_map_imu, &icp);
   return true;
 }

@@ -49,6 +49,7 @@ void LocalizationSupervisor::BeginSearch(const estimation::NavState& x,
   search_is_start_ = is_start;
   search_first_attempt_scans_ = first_attempt_scans;
   lost_ = false;
+  search_at_once_ = false;
   bad_scans_in_row_ = 0;
   AddEvent(LocalizationEvent::Kind::kSearching, x.t_ns,
            reason + "; searching while the vehicle moves (no pose until one is accepted)",
