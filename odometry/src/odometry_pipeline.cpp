@@ -157,15 +157,19 @@ void OdometryPipeline::Finish(std::vector<ScanResult>* results) {
 std::vector<estimation::NavState> OdometryPipeline::TakeFinalizedStates() {
   std::vector<estimation::NavState> finalized;
   estimator_->TakeFinalized(&finalized);
-  // A trajectory holds places in the map only: the states of lost scans are left out.
+  // A trajectory holds places in the map only: the states of lost scans are left out, and a
+  // relocalized scan is written where the relocalization put it.
   std::vector<estimation::NavState> states;
   states.reserve(finalized.size());
   for (estimation::NavState& x : finalized) {
-    if (untrusted_t_ns_.count(x.t_ns) == 0) states.push_back(std::move(x));
+    if (untrusted_t_ns_.count(x.t_ns) != 0) continue;
+    const auto replaced = replaced_.find(x.t_ns);
+    states.push_back(replaced == replaced_.end() ? std::move(x) : replaced->second);
   }
   if (!finalized.empty()) {
     untrusted_t_ns_.erase(untrusted_t_ns_.begin(),
                           untrusted_t_ns_.upper_bound(finalized.back().t_ns));
+    replaced_.erase(replaced_.begin(), replaced_.upper_bound(finalized.back().t_ns));
   }
   return states;
 }
@@ -267,6 +271,7 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
                                estimator_.get())) {
       result->state = estimator_->state();
       result->pose_covariance = estimator_->PoseCovariance();
+      replaced_[result->t_ns] = result->state;
     }
     result->T_map_odom = supervisor_->T_map_odom();
     if (supervisor_->lost()) result->pose_status = PoseStatus::kLost;

@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -22,12 +23,12 @@
 #include "hylo/localization/global_search.h"
 #include "hylo/localization/localization.h"
 #include "hylo/localization/supervisor.h"
+#include "hylo/mapping/map_manager.h"
 #include "hylo/odometry/data_gap.h"
 #include "hylo/odometry/measurement_queue.h"
 #include "hylo/odometry/scan_preprocessor.h"
 #include "hylo/odometry/scan_result.h"
 #include "hylo/odometry/twist.h"
-#include "hylo/mapping/map_manager.h"
 #include "hylo/registration/plane_matcher.h"
 
 namespace hylo::odometry {
@@ -173,6 +174,9 @@ class OdometryPipeline {
   std::string message_;
   PipelineCounters counters_;
   std::set<int64_t> untrusted_t_ns_;  // scans not kValid whose states are not finalized yet
+  // Scans whose pose the supervisor replaced after their update (a relocalization): the
+  // back-end finalizes the state of the update, which the trajectory must not hold.
+  std::map<int64_t, estimation::NavState> replaced_;
   ScanIntervalClock scan_clock_;  // gaps in the data (localization)
 };
 
