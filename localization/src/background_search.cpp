@@ -4,6 +4,8 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <utility>
 
@@ -11,12 +13,22 @@ namespace hylo::localization {
 namespace {
 
 // Below the scan thread: on a loaded computer the tracking keeps its share of the CPU and the
-// attempt takes what is left. Best effort: an unprivileged thread may only lower itself.
-constexpr int kWorkerNiceness = 10;
+// attempt takes what is left. Relative to the thread that starts it (which runs at the scan
+// thread's niceness): an absolute value would, in a process started with `nice -n 19` by a
+// privileged user, raise the worker above the scan thread. Best effort, capped at 19.
+constexpr int kWorkerNicenessAbove = 10;
+constexpr int kMaxNiceness = 19;
 
-void LowerThisThreadsPriority() {
+void LowerThisThreadsPriority(int scan_thread_niceness) {
   const auto tid = static_cast<id_t>(syscall(SYS_gettid));
-  setpriority(PRIO_PROCESS, tid, kWorkerNiceness);
+  const int niceness = std::min(scan_thread_niceness + kWorkerNicenessAbove, kMaxNiceness);
+  setpriority(PRIO_PROCESS, tid, niceness);
+}
+
+int ThisThreadsNiceness() {
+  errno = 0;  // getpriority may return -1 as a niceness
+  const int niceness = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
+  return errno == 0 ? niceness : 0;
 }
 
 }  // namespace
@@ -25,6 +37,15 @@ SearchAttempt BackgroundSearch::Run(const PointCloud& cloud_imu, const PointClou
                                     const Eigen::Matrix3d& R_level_imu,
                                     SearchAttempt attempt) const {
   attempt.points = cloud_imu.size();
+  if (attempt.T_map_imu_guess) {
+    const IcpInitializerResult fit =
+        around_guess_.Initialize(cloud_imu, map_, *attempt.T_map_imu_guess);
+    attempt.result.status = fit.accepted ? GlobalStatus::kAccepted : GlobalStatus::kNotFound;
+    attempt.result.T_map_imu = fit.T_map_imu;
+    attempt.result.refinement = fit;
+    attempt.result.message = fit.message;
+    return attempt;
+  }
   attempt.result = search_.Localize(cloud_imu, R_level_imu, map_);
   if (attempt.result.status != GlobalStatus::kAccepted && !recent_imu.empty()) {
     GlobalLocalizationResult recent = search_.Localize(recent_imu, R_level_imu, map_);
@@ -51,10 +72,11 @@ bool BackgroundSearch::Start(PointCloud cloud_imu, PointCloud recent_imu,
     finished_ = Run(cloud_imu, recent_imu, R_level_imu, std::move(attempt));
     return true;
   }
+  const int scan_thread_niceness = ThisThreadsNiceness();
   running_ = std::async(std::launch::async,
                         [this, cloud = std::move(cloud_imu), recent = std::move(recent_imu),
-                         R_level_imu, attempt = std::move(attempt)]() {
-                          LowerThisThreadsPriority();
+                         R_level_imu, attempt = std::move(attempt), scan_thread_niceness]() {
+                          LowerThisThreadsPriority(scan_thread_niceness);
                           return Run(cloud, recent, R_level_imu, attempt);
                         });
   return true;

@@ -220,25 +220,34 @@ bool LocalizationSupervisor::Supervise(int64_t t_ns, const ScanHealth& health,
   const Eigen::Isometry3d here = lie::ToIsometry(estimator->state().T_map_imu());
   const bool local_first = !search_at_once_;
   search_at_once_ = false;
-  if (local_first && Relocalize(sweep, map, here, /*allow_global=*/!CanSearch(), estimator)) {
-    return true;
-  }
-  if (CanSearch()) {
-    // The state that lost the map (after a gap, a slip or a jump) is not trusted to carry the
-    // provisional frame: its velocity and attitude start again as a moving start's, wide
-    // enough for any ground vehicle, for the scans to correct.
-    estimation::NavState restart = estimator->state();
-    restart.v_map_imu.setZero();
-    estimator->Initialize(restart, uncertainty_.MovingCovariance(restart));
-    // The first attempt at once: a sweep alone often places a vehicle that was carried off.
-    BeginSearch(restart, sweep, /*is_start=*/false, /*first_attempt_scans=*/1,
-                "lost: " + (local_first ? events_.back().message
-                                        : std::string("no match near the last pose is tried "
-                                                      "after a gap without IMU")));
+  if (!CanSearch()) {
+    if (Relocalize(sweep, map, here, /*allow_global=*/true, estimator)) return true;
+    scans_until_retry_ = options_.relocalize_retry_scans;
     return false;
   }
-  scans_until_retry_ = options_.relocalize_retry_scans;
-  return false;
+  if (!local_first) {
+    RestartForSearch(estimator);
+    BeginSearch(estimator->state(), sweep, /*is_start=*/false, /*first_attempt_scans=*/1,
+                "lost: no match near the last pose is tried after a gap without IMU");
+    return false;
+  }
+  // The search begins at once, its frame where the vehicle was lost, so that the fit near the
+  // last pose (an ICP on the sweep, up to seconds from a poor guess) is its first attempt and
+  // runs where the search's attempts run: beside the scan path when they do. Until it fails
+  // the state is kept as it is; then the first whole-map attempt follows on the next scan.
+  BeginSearch(estimator->state(), sweep, /*is_start=*/false, /*first_attempt_scans=*/1,
+              "lost: " + events_.back().message + "; first a fit near the last pose");
+  StartAttempt(sweep, here, map);
+  return TakeFinishedAttempt(estimator);
+}
+
+void LocalizationSupervisor::RestartForSearch(estimation::Estimator* estimator) const {
+  // The state that lost the map (after a gap, a slip or a jump) is not trusted to carry the
+  // provisional frame: its velocity and attitude start again as a moving start's, wide enough
+  // for any ground vehicle, for the scans to correct.
+  estimation::NavState restart = estimator->state();
+  restart.v_map_imu.setZero();
+  estimator->Initialize(restart, uncertainty_.MovingCovariance(restart));
 }
 
 bool LocalizationSupervisor::Relocalize(const PointCloud& sweep_imu,

@@ -48,6 +48,7 @@ void LocalizationSupervisor::BeginSearch(const estimation::NavState& x,
   search_->Begin(points_imu, lie::ToIsometry(x.T_map_imu()));
   search_is_start_ = is_start;
   search_first_attempt_scans_ = first_attempt_scans;
+  search_t_ns_ = x.t_ns;
   lost_ = false;
   search_at_once_ = false;
   bad_scans_in_row_ = 0;
@@ -63,16 +64,10 @@ LocalizationSupervisor::SearchStep LocalizationSupervisor::Search(
   const Eigen::Isometry3d T_search_imu = lie::ToIsometry(x.T_map_imu());
   const bool due =
       search_->Add(sweep_imu, map_points_search, T_search_imu, search_first_attempt_scans_);
-  if (!background_) {
-    background_ = std::make_unique<BackgroundSearch>(*global_, icp_initializer_, map,
-                                                     options_.search.background);
-  }
-  if (std::optional<SearchAttempt> done = background_->TakeFinished()) {
-    if (Conclude(*done, estimator)) return SearchStep::kLocalized;
-  }
+  if (TakeFinishedAttempt(estimator)) return SearchStep::kLocalized;
   std::optional<Eigen::Isometry3d> guess;
   guess.swap(relocalize_request_);
-  const bool attempt_now = due && !background_->Busy();
+  const bool attempt_now = due && !Background(map).Busy();
   if (guess || attempt_now) {
     ++scans_initializer_;
     PointCloud cloud_imu = search_->TakeAttemptCloud(T_search_imu);
@@ -96,9 +91,7 @@ LocalizationSupervisor::SearchStep LocalizationSupervisor::Search(
       background_->Start(std::move(cloud_imu), search_->RecentInImu(T_search_imu),
                          LevellingRotation(T_search_imu.linear()), attempt);
       // On the scan thread the attempt has finished: its verdict is applied at once.
-      if (std::optional<SearchAttempt> done = background_->TakeFinished()) {
-        if (Conclude(*done, estimator)) return SearchStep::kLocalized;
-      }
+      if (TakeFinishedAttempt(estimator)) return SearchStep::kLocalized;
     }
   }
   if (search_->GaveUp()) {
@@ -114,8 +107,52 @@ LocalizationSupervisor::SearchStep LocalizationSupervisor::Search(
   return SearchStep::kSearching;
 }
 
+BackgroundSearch& LocalizationSupervisor::Background(const registration::NeighborSearch& map) {
+  if (!background_) {
+    background_ = std::make_unique<BackgroundSearch>(*global_, icp_initializer_, sweep_initializer_,
+                                                     map, options_.search.background);
+  }
+  return *background_;
+}
+
+void LocalizationSupervisor::StartAttempt(const PointCloud& sweep_imu,
+                                          const Eigen::Isometry3d& T_map_imu_guess,
+                                          const registration::NeighborSearch& map) {
+  ++scans_initializer_;
+  SearchAttempt attempt;
+  attempt.T_map_imu_guess = T_map_imu_guess;
+  // The search frame begins where the vehicle was lost: the guess is the vehicle's pose in it.
+  attempt.T_search_imu = T_map_imu_guess;
+  attempt.t_ns = search_t_ns_;
+  Background(map).Start(sweep_imu, PointCloud(), LevellingRotation(T_map_imu_guess.linear()),
+                        std::move(attempt));
+}
+
+bool LocalizationSupervisor::TakeFinishedAttempt(estimation::Estimator* estimator) {
+  if (!background_) return false;
+  std::optional<SearchAttempt> done = background_->TakeFinished();
+  return done && Conclude(*done, estimator);
+}
+
+bool LocalizationSupervisor::ConcludeNearGuess(const SearchAttempt& attempt,
+                                               estimation::Estimator* estimator) {
+  const IcpInitializerResult& fit = attempt.result.refinement;
+  if (!fit.accepted) {
+    AddEvent(LocalizationEvent::Kind::kRelocalizationFailed, attempt.t_ns,
+             "around the last pose: " + fit.message, attempt.T_search_imu, &fit);
+    RestartForSearch(estimator);
+    return false;
+  }
+  const Eigen::Isometry3d T_search_imu = lie::ToIsometry(estimator->state().T_map_imu());
+  IcpInitializerResult verdict = fit;
+  verdict.T_map_imu = fit.T_map_imu * attempt.T_search_imu.inverse() * T_search_imu;
+  EndSearch(verdict.T_map_imu, estimator, fit.message, verdict);
+  return true;
+}
+
 bool LocalizationSupervisor::Conclude(const SearchAttempt& attempt,
                                       estimation::Estimator* estimator) {
+  if (attempt.T_map_imu_guess) return ConcludeNearGuess(attempt, estimator);
   const GlobalLocalizationResult& r = attempt.result;
   std::ostringstream os;
   os << "global localization " << r.message << " (attempt " << attempt.attempt << " after "

@@ -300,6 +300,37 @@ TEST(SimRelocalization, BadHealthDeclaresLossAndRelocalizes) {
   EXPECT_LE(run.ate.rmse_m, 0.03);
 }
 
+TEST(SimRelocalization, BesideTheScanPathTheFitNearTheLastPoseDoesNotHoldTheScan) {
+  // As above, with the search's attempts on a worker (the ROS node's setting): the fit near
+  // the last pose is the search's first attempt, so the scan that declared the loss goes on
+  // in the provisional frame and a later scan applies the fit.
+  odometry::OdometryPipelineOptions options = LocalizationOptions(Estimator::Backend::kIeskf, -1.0);
+  options.localization.min_inlier_ratio = 1.0;
+  options.localization.health_inlier_distance_m = 0.001;
+  options.localization.lost_after_scans = 40;
+  options.localization.search.background = true;
+  const LocalizationRun run =
+      RunSessionB(ShortB(), options, PerturbedStart(SessionStartTruth(ShortB()), 0.5, 0.5, 5.0));
+  const auto& pipeline = run.sink->pipeline;
+  ASSERT_NE(pipeline.status(), odometry::OdometryPipeline::Status::kFailed);
+  int64_t lost_t_ns = -1, relocalized_t_ns = -1;
+  for (const LocalizationEvent& e : pipeline.events()) {
+    if (e.kind == LocalizationEvent::Kind::kLost && lost_t_ns < 0) lost_t_ns = e.t_ns;
+    if (e.kind == LocalizationEvent::Kind::kRelocalized && relocalized_t_ns < 0) {
+      relocalized_t_ns = e.t_ns;
+    }
+  }
+  ASSERT_GE(lost_t_ns, 0);
+  ASSERT_GT(relocalized_t_ns, lost_t_ns) << "the fit was applied on the scan that was lost";
+  std::size_t provisional = 0;
+  for (const odometry::ScanResult& r : run.sink->all_results()) {
+    if (r.pose_status == odometry::PoseStatus::kProvisional) ++provisional;
+  }
+  EXPECT_GT(provisional, 0u);
+  ASSERT_TRUE(run.ate.ok);
+  EXPECT_LE(run.ate.rmse_m, 0.03);
+}
+
 TEST(SimLocalizationBadInput, AGuessFarOutsideTheMapIsAClearErrorWithoutOdometry) {
   Eigen::Isometry3d far = PerturbedStart(SessionStartTruth(ShortB()), 400.0, -300.0, 0.0);
   odometry::OdometryPipelineOptions options =

@@ -25,6 +25,10 @@ namespace hylo::localization {
 
 /// One attempt and where the search frame had the vehicle when its cloud was taken.
 struct SearchAttempt {
+  /// Set: the attempt fits the cloud around this pose alone (where the vehicle was when it
+  /// was lost) instead of searching the whole map; `result` is then accepted with that fit,
+  /// or not, and carries it as its refinement.
+  std::optional<Eigen::Isometry3d> T_map_imu_guess;
   GlobalLocalizationResult result;
   bool from_recent = false;  ///< placed by the last scans alone
   Eigen::Isometry3d T_search_imu = Eigen::Isometry3d::Identity();  ///< at the attempt's scan
@@ -40,21 +44,29 @@ struct SearchAttempt {
 
 class BackgroundSearch {
  public:
-  /// `search`, `refiner` and `map` must outlive this object. `on_worker`: attempts run on a
+  /// `search`, `refiner`, `around_guess` and `map` must outlive this object. `around_guess`:
+  /// the initializer for an attempt around a guess (one sweep). `on_worker`: attempts run on a
   /// worker thread; false: on the caller's, each finished when Start returns.
   BackgroundSearch(const GlobalSearch& search, const IcpInitializer& refiner,
-                   const registration::NeighborSearch& map, bool on_worker)
-      : search_(search), refiner_(refiner), map_(map), on_worker_(on_worker) {}
+                   const IcpInitializer& around_guess, const registration::NeighborSearch& map,
+                   bool on_worker)
+      : search_(search),
+        refiner_(refiner),
+        around_guess_(around_guess),
+        map_(map),
+        on_worker_(on_worker) {}
   /// Waits for an attempt still running.
   ~BackgroundSearch() { Wait(); }
   BackgroundSearch(const BackgroundSearch&) = delete;
   BackgroundSearch& operator=(const BackgroundSearch&) = delete;
 
   /// Starts an attempt on `cloud_imu` (IMU frame at `attempt.T_search_imu`) levelled by
-  /// `R_level_imu`; `attempt` carries its bookkeeping. When that cloud places nothing,
-  /// `recent_imu` (the last scans alone, same frame) is tried: the accumulated cloud is the
-  /// more telling one while the provisional odometry holds, the recent scans carry little of
-  /// its drift when it does not. An accepted place is then refined on `recent_imu` (the
+  /// `R_level_imu`; `attempt` carries its bookkeeping. With `attempt.T_map_imu_guess` the
+  /// cloud is only fitted around that pose (`around_guess`), nothing else is tried. Otherwise,
+  /// when that cloud places nothing, `recent_imu` (the last scans alone, same frame) is tried:
+  /// the accumulated cloud is the more telling one while the provisional odometry holds, the
+  /// recent scans carry little of its drift when it does not. An accepted place is refined on
+  /// `recent_imu` (the
   /// refiner's ICP), so that the scan thread only composes the verdict with the odometry
   /// since the attempt's scan. False while an attempt runs or its verdict is not taken.
   bool Start(PointCloud cloud_imu, PointCloud recent_imu, const Eigen::Matrix3d& R_level_imu,
@@ -72,6 +84,7 @@ class BackgroundSearch {
 
   const GlobalSearch& search_;
   const IcpInitializer& refiner_;
+  const IcpInitializer& around_guess_;
   const registration::NeighborSearch& map_;
   const bool on_worker_;
   std::future<SearchAttempt> running_;     // on the worker

@@ -149,10 +149,24 @@ class LocalizationSupervisor {
   // `first_attempt_scans` scans (0: once the vehicle has moved retry_m).
   void BeginSearch(const estimation::NavState& x, const PointCloud& points_imu, bool is_start,
                    int first_attempt_scans, const std::string& reason);
+  // The estimator restarted where it is with a moving start's uncertainty and no velocity,
+  // for a search.
+  void RestartForSearch(estimation::Estimator* estimator) const;
+  // The search's attempts (created on first use, against `map`).
+  BackgroundSearch& Background(const registration::NeighborSearch& map);
+  // The search's first attempt when the vehicle was lost: `sweep_imu` fitted around
+  // `T_map_imu_guess`, the pose where it was lost (= the search frame's origin then).
+  void StartAttempt(const PointCloud& sweep_imu, const Eigen::Isometry3d& T_map_imu_guess,
+                    const registration::NeighborSearch& map);
+  // Concludes a finished attempt, if any. True when the search ended with a pose.
+  bool TakeFinishedAttempt(estimation::Estimator* estimator);
   // A finished global attempt: accepted, its place (refined on the last scans) is carried to
   // now by the search frame's odometry; otherwise an event says why. True when the search
   // ended.
   bool Conclude(const SearchAttempt& attempt, estimation::Estimator* estimator);
+  // The same for the fit around the last pose; rejected, the estimator restarts for the
+  // whole-map search (RestartForSearch).
+  bool ConcludeNearGuess(const SearchAttempt& attempt, estimation::Estimator* estimator);
   // The search found the vehicle at `T_map_imu`: the estimator goes on in the map.
   void EndSearch(const Eigen::Isometry3d& T_map_imu, estimation::Estimator* estimator,
                  const std::string& verdict, const IcpInitializerResult& icp);
@@ -184,6 +198,7 @@ class LocalizationSupervisor {
   std::string last_attempt_;        // the last attempt's verdict, for a search that gives up
   bool search_is_start_ = false;          // the search began at the start (not on request)
   int search_first_attempt_scans_ = 0;    // see BeginSearch
+  int64_t search_t_ns_ = 0;               // when the search began
   bool search_at_once_ = false;  // lost after a gap without IMU: no local relocalization
   int bad_scans_in_row_ = 0;
   int scans_until_retry_ = 0;
