@@ -9,12 +9,15 @@
 //
 //   hylo_recovery_benchmark [--scenarios 0-23] [--half even|odd|all] [--cases 6] [--seed S]
 //                           [--window S] [--max-drive S] [--backends ieskf|sliding_window|both]
-//                           [--background] [--jobs N] [--json PATH] [--preset-dir DIR]
+//                           [--background] [--real-time] [--jobs N] [--json PATH] [--preset-dir
+//                           DIR]
 //                           [--kinds K,K] [--trace DIR] [--quick] [--list]
 //                           [--summarize A.json...]
 // --background searches on a worker thread as the ROS node does (localization.search.background;
 // off by default, as for a log read from a file, whose results then do not depend on the
 // machine's load): the scan path's times while searching are then a live node's.
+// --real-time delivers each case's scans from the data's return on at the pace of their stamps
+// (with --background: the recovery time a live node would see, its attempt taking wall time).
 // --kinds gap_all,gap_lidar,moving_start runs only the drawn cases of those kinds (same draws).
 // --trace DIR writes every case's run scan by scan and its events (recovery_trace.h).
 // --list prints the cases each scenario would run (where and when), simulating nothing.
@@ -113,6 +116,8 @@ bool Parse(int argc, char** argv, Args* args) {
       args->run.adjust = [](hylo::odometry::OdometryPipelineOptions* o) {
         o->localization.search.background = true;
       };
+    } else if (a == "--real-time") {
+      args->run.real_time = true;
     } else if (a == "--jobs" && has) {
       args->jobs = std::max(1, std::atoi(argv[++i]));
     } else if (a == "--json" && has) {
@@ -184,9 +189,13 @@ hylo::io::Json RunSettings(const Args& args) {
     const hylo::io::Json first = hylo::io::ReadJsonFile(args.summarize.front());
     return first.contains("settings") ? first.at("settings") : hylo::io::Json();
   }
-  return {{"cases_per_scenario", args.run.draw.cases}, {"seed", args.run.draw.seed},
-          {"window_s", args.run.draw.window_s},        {"max_drive_s", args.run.max_drive_s},
-          {"background_search", args.background},      {"quick", args.quick}};
+  return {{"cases_per_scenario", args.run.draw.cases},
+          {"seed", args.run.draw.seed},
+          {"window_s", args.run.draw.window_s},
+          {"max_drive_s", args.run.max_drive_s},
+          {"background_search", args.background},
+          {"real_time", args.run.real_time},
+          {"quick", args.quick}};
 }
 
 hylo::io::Json Document(const std::vector<RecoveryScenario>& all, const Args& args) {
@@ -301,7 +310,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: hylo_recovery_benchmark [--scenarios 0-23] [--half even|odd|all] "
                  "[--cases 6] [--seed S] [--window S] [--max-drive S] "
-                 "[--backends ieskf|sliding_window|both] [--background] [--jobs N] [--json PATH] "
+                 "[--backends ieskf|sliding_window|both] [--background] [--real-time] [--jobs N] "
+                 "[--json PATH] "
                  "[--preset-dir DIR] [--kinds K,K] [--trace DIR] [--quick] [--list] "
                  "[--summarize A.json...]\n");
     return 2;

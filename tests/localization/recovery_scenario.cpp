@@ -2,8 +2,10 @@
 #include "localization/recovery_scenario.h"
 
 #include <algorithm>
+#include <chrono>
 #include <memory>
 #include <stdexcept>
+#include <thread>
 
 #include "estimation/scenario_sinks.h"
 #include "hylo/common/time.h"
@@ -65,6 +67,46 @@ sim::ScenarioSimulator CasesDrive(const sim::Scenario& scenario, const sim::Site
   return sim::ScenarioSimulator(drive_scenario, drive_site, sim::SessionId::kB);
 }
 
+// Delivers the scans that fall in any case's window at the pace of their stamps (real_time),
+// everything else at once. The pace restarts at each window's first scan: the drive between
+// windows is not waited for.
+class RealTimePacer : public sim::SessionSink {
+ public:
+  RealTimePacer(sim::SessionSink* sink, const std::vector<RecoveryCase>& cases)
+      : sink_(sink), cases_(cases) {}
+  void OnImu(const ImuSample& s) override { sink_->OnImu(s); }
+  void OnTruth(const sim::TruthSample& t) override { sink_->OnTruth(t); }
+  void OnScan(const LidarScan& s) override {
+    if (InWindow(s.end_t_ns)) {
+      const auto now = std::chrono::steady_clock::now();
+      if (!pacing_) {
+        pacing_ = true;
+        anchor_wall_ = now;
+        anchor_t_ns_ = s.end_t_ns;
+      }
+      std::this_thread::sleep_until(anchor_wall_ +
+                                    std::chrono::nanoseconds(s.end_t_ns - anchor_t_ns_));
+    } else {
+      pacing_ = false;
+    }
+    sink_->OnScan(s);
+  }
+
+ private:
+  bool InWindow(int64_t t_ns) const {
+    for (const RecoveryCase& c : cases_) {
+      if (t_ns >= c.return_t_ns && t_ns < c.end_t_ns) return true;
+    }
+    return false;
+  }
+
+  sim::SessionSink* sink_;
+  std::vector<RecoveryCase> cases_;
+  bool pacing_ = false;
+  std::chrono::steady_clock::time_point anchor_wall_;
+  int64_t anchor_t_ns_ = 0;
+};
+
 sim::Scenario Shortened(const sim::Scenario& drawn, const RecoveryRunOptions& options) {
   sim::Scenario scenario = drawn;
   if (options.max_drive_s > 0.0) scenario.max_drive_a_s = options.max_drive_s;
@@ -124,7 +166,8 @@ RecoveryScenario RunRecoveryScenario(const sim::Scenario& drawn,
       out.results.push_back({c, backend, {}});
     }
   }
-  out.cpu_s += drive.Run(&tee).cpu_s;
+  RealTimePacer paced(&tee, cases);
+  out.cpu_s += drive.Run(options.real_time ? static_cast<sim::SessionSink*>(&paced) : &tee).cpu_s;
   for (std::size_t k = 0; k < runs.size(); ++k) {
     runs[k]->Finish();
     out.results[k].figures = ScoreRecovery(*runs[k], truth, options.score);

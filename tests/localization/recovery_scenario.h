@@ -42,6 +42,11 @@ struct RecoveryRunOptions {
   std::vector<RecoveryKind> kinds;
   /// Not empty: every case's run is written there scan by scan (recovery_trace.h).
   std::string trace_dir;
+  /// Scans that fall in a case's window (from the data's return to its end) are delivered no
+  /// faster than the clock they were stamped with, as a live node receives them; elsewhere as
+  /// fast as simulated. For a search beside the scan path, whose attempt takes wall time while
+  /// the log would otherwise race ahead of it.
+  bool real_time = false;
   /// Changes every run's options after the sheet's (e.g. a setting being chosen).
   std::function<void(odometry::OdometryPipelineOptions*)> adjust;
 };
