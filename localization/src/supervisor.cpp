@@ -162,19 +162,22 @@ void LocalizationSupervisor::DataGap(int64_t t_ns, double gap_s, bool imu_too,
   if (!started_ || searching() || !on_map_ || lost_) return;
   lost_ = true;
   scans_until_retry_ = 0;
-  // Blind across the gap, the vehicle may be anywhere it could drive meanwhile: a fit near
-  // where it was (this scan's, or a relocalization's) would as readily be a look-alike bay as
-  // the place. The whole map is searched instead, where the global localizer can tell.
-  search_at_once_ = imu_too && CanSearch();
+  // The scan's health does not clear this loss: its update pulls a pose metres off part of
+  // the way, and the inlier ratio then passes while the pose is still off. The initializer's
+  // fit near the pose, whose gates are stricter, confirms or replaces it. Blind across the
+  // gap, the vehicle may be anywhere it could drive meanwhile: a fit near where it was would
+  // as readily be a look-alike bay as the place, and the whole map is searched instead,
+  // where the global localizer can tell.
+  after_gap_ = imu_too && CanSearch() ? AfterGap::kSearchAtOnce : AfterGap::kFitFirst;
   std::ostringstream os;
   os << "no data for " << gap_s << " s: ";
-  if (search_at_once_) {
+  if (after_gap_ == AfterGap::kSearchAtOnce) {
     os << "no IMU either, so the state restarts where the gap began (levelled by the "
           "accelerometer, velocity unknown) and the place is searched for over the whole map";
   } else {
     os << (imu_too ? "no IMU either: the state restarted where the gap began"
                    : "the pose propagated through the gap")
-       << " is checked first";
+       << " is confirmed by a fit of the scan near it first";
   }
   AddEvent(LocalizationEvent::Kind::kLost, t_ns, os.str(), T_map_imu);
 }
@@ -187,7 +190,7 @@ bool LocalizationSupervisor::Supervise(int64_t t_ns, const ScanHealth& health,
   if (!on_map_) return false;  // no prior here to judge the scan by, or to relocalize in
   if (!health.good) ++scans_bad_health_;
   bad_scans_in_row_ = health.good ? 0 : bad_scans_in_row_ + 1;
-  if (lost_ && health.good && !search_at_once_) lost_ = false;
+  if (lost_ && health.good && after_gap_ == AfterGap::kNone) lost_ = false;
   if (!lost_ && bad_scans_in_row_ >= options_.lost_after_scans) {
     lost_ = true;
     scans_until_retry_ = 0;
@@ -218,8 +221,8 @@ bool LocalizationSupervisor::Supervise(int64_t t_ns, const ScanHealth& health,
   // map, again every relocalize_retry_scans.
   const PointCloud sweep = sweep_imu();
   const Eigen::Isometry3d here = lie::ToIsometry(estimator->state().T_map_imu());
-  const bool local_first = !search_at_once_;
-  search_at_once_ = false;
+  const bool local_first = after_gap_ != AfterGap::kSearchAtOnce;
+  after_gap_ = AfterGap::kNone;
   if (!CanSearch()) {
     if (Relocalize(sweep, map, here, /*allow_global=*/true, estimator)) return true;
     scans_until_retry_ = options_.relocalize_retry_scans;
@@ -282,7 +285,7 @@ bool LocalizationSupervisor::Relocalize(const PointCloud& sweep_imu,
   T_map_odom_ = x.T_map_imu() * T_odom_imu_before.Inverse();
   bad_scans_in_row_ = 0;
   lost_ = false;
-  search_at_once_ = false;
+  after_gap_ = AfterGap::kNone;
   AddEvent(LocalizationEvent::Kind::kRelocalized, x.t_ns, verdict, icp.T_map_imu, &icp);
   return true;
 }

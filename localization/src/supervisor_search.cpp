@@ -50,7 +50,7 @@ void LocalizationSupervisor::BeginSearch(const estimation::NavState& x,
   search_first_attempt_scans_ = first_attempt_scans;
   search_t_ns_ = x.t_ns;
   lost_ = false;
-  search_at_once_ = false;
+  after_gap_ = AfterGap::kNone;
   bad_scans_in_row_ = 0;
   AddEvent(LocalizationEvent::Kind::kSearching, x.t_ns,
            reason + "; searching while the vehicle moves (no pose until one is accepted)",

@@ -114,8 +114,8 @@ class LocalizationSupervisor {
   bool on_map() const { return on_map_; }
 
   /// The scan ending at `t_ns` comes after `gap_s` without data: the state propagated through
-  /// the gap is not trusted until this scan's health confirms it, and relocalization starts at
-  /// once if it does not (rather than after lost_after_scans bad scans given as valid).
+  /// the gap is not trusted until a fit of the scan near it (the initializer's, as a
+  /// relocalization) confirms it; its health alone does not.
   /// `imu_too`: the IMU was silent as well and the estimator was restarted at the gap's start
   /// (the event says so); the vehicle may then be anywhere it could have driven, and the whole
   /// map is searched (when it can be) without trusting a fit near the gap's start. Nothing
@@ -199,7 +199,10 @@ class LocalizationSupervisor {
   bool search_is_start_ = false;          // the search began at the start (not on request)
   int search_first_attempt_scans_ = 0;    // see BeginSearch
   int64_t search_t_ns_ = 0;               // when the search began
-  bool search_at_once_ = false;  // lost after a gap without IMU: no local relocalization
+  // Lost after a gap in the data (DataGap): health cannot clear the loss; the fit near the
+  // last pose comes first, or (a gap without IMU) the whole map is searched at once.
+  enum class AfterGap { kNone, kFitFirst, kSearchAtOnce };
+  AfterGap after_gap_ = AfterGap::kNone;
   int bad_scans_in_row_ = 0;
   int scans_until_retry_ = 0;
   bool lost_ = false;
