@@ -9,9 +9,8 @@
 //
 //   hylo_recovery_benchmark [--scenarios 0-23] [--half even|odd|all] [--cases 6] [--seed S]
 //                           [--window S] [--max-drive S] [--backends ieskf|sliding_window|both]
-//                           [--background] [--real-time] [--jobs N] [--json PATH] [--preset-dir
-//                           DIR]
-//                           [--kinds K,K] [--trace DIR] [--quick] [--list]
+//                           [--background] [--real-time] [--jobs N] [--json PATH]
+//                           [--preset-dir DIR] [--kinds K,K] [--trace DIR] [--quick] [--list]
 //                           [--summarize A.json...]
 // --background searches on a worker thread as the ROS node does (localization.search.background;
 // off by default, as for a log read from a file, whose results then do not depend on the
@@ -311,8 +310,7 @@ int main(int argc, char** argv) {
                  "usage: hylo_recovery_benchmark [--scenarios 0-23] [--half even|odd|all] "
                  "[--cases 6] [--seed S] [--window S] [--max-drive S] "
                  "[--backends ieskf|sliding_window|both] [--background] [--real-time] [--jobs N] "
-                 "[--json PATH] "
-                 "[--preset-dir DIR] [--kinds K,K] [--trace DIR] [--quick] [--list] "
+                 "[--json PATH] [--preset-dir DIR] [--kinds K,K] [--trace DIR] [--quick] [--list] "
                  "[--summarize A.json...]\n");
     return 2;
   }

@@ -54,7 +54,7 @@ TEST_P(Recovery, AKidnapIsFoundAgainWithoutAWrongPose) {
 }
 
 TEST_P(Recovery, ALidarGapIsFoundAgainWithoutAPoseWrittenOff) {
-  // The IMU alone carries the pose metres off over 40 m: the first scan back is relocalized,
+  // The IMU alone carries the pose metres off over 30 m: the first scan back is relocalized,
   // and what the trajectory holds for it is the relocalized pose, not the drifted one.
   ExpectRecovered(GetParam(), {RecoveryKind::kGapLidar, 10.0, 30.0}, /*drive_s=*/55.0);
 }

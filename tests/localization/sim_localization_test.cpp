@@ -281,14 +281,21 @@ TEST(SimRelocalization, ARequestAtAWrongPlaceIsRejectedAndTrackingContinues) {
   EXPECT_LE(run.ate.rmse_m, 0.03);
 }
 
-TEST(SimRelocalization, BadHealthDeclaresLossAndRelocalizes) {
-  // An inlier ratio no scan can reach makes every scan bad: the loss and the relocalization
-  // around the current pose must happen, and must not harm a correct estimate.
+// An inlier ratio no scan can reach: every scan is bad, and the vehicle is lost every 40 scans
+// while its estimate is in fact correct.
+odometry::OdometryPipelineOptions EveryScanBadOptions() {
   odometry::OdometryPipelineOptions options =
       LocalizationOptions(Estimator::Backend::kIeskf, -1.0);
   options.localization.min_inlier_ratio = 1.0;
   options.localization.health_inlier_distance_m = 0.001;
   options.localization.lost_after_scans = 40;
+  return options;
+}
+
+TEST(SimRelocalization, BadHealthDeclaresLossAndRelocalizes) {
+  // The loss and the relocalization around the current pose must happen, and must not harm a
+  // correct estimate.
+  const odometry::OdometryPipelineOptions options = EveryScanBadOptions();
   const LocalizationRun run =
       RunSessionB(ShortB(), options, PerturbedStart(SessionStartTruth(ShortB()), 0.5, 0.5, 5.0));
   const auto& pipeline = run.sink->pipeline;
@@ -304,10 +311,7 @@ TEST(SimRelocalization, BesideTheScanPathTheFitNearTheLastPoseDoesNotHoldTheScan
   // As above, with the search's attempts on a worker (the ROS node's setting): the fit near
   // the last pose is the search's first attempt, so the scan that declared the loss goes on
   // in the provisional frame and a later scan applies the fit.
-  odometry::OdometryPipelineOptions options = LocalizationOptions(Estimator::Backend::kIeskf, -1.0);
-  options.localization.min_inlier_ratio = 1.0;
-  options.localization.health_inlier_distance_m = 0.001;
-  options.localization.lost_after_scans = 40;
+  odometry::OdometryPipelineOptions options = EveryScanBadOptions();
   options.localization.search.background = true;
   const LocalizationRun run =
       RunSessionB(ShortB(), options, PerturbedStart(SessionStartTruth(ShortB()), 0.5, 0.5, 5.0));

@@ -66,9 +66,9 @@ class BackgroundSearch {
   /// when that cloud places nothing, `recent_imu` (the last scans alone, same frame) is tried:
   /// the accumulated cloud is the more telling one while the provisional odometry holds, the
   /// recent scans carry little of its drift when it does not. An accepted place is refined on
-  /// `recent_imu` (the
-  /// refiner's ICP), so that the scan thread only composes the verdict with the odometry
-  /// since the attempt's scan. False while an attempt runs or its verdict is not taken.
+  /// `recent_imu` (the refiner's ICP), so that the scan thread only composes the verdict with
+  /// the odometry since the attempt's scan. False while an attempt runs or its verdict is not
+  /// taken.
   bool Start(PointCloud cloud_imu, PointCloud recent_imu, const Eigen::Matrix3d& R_level_imu,
              SearchAttempt attempt);
   /// True while an attempt runs.
