@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libceres-dev libsuitesparse-dev libpcl-dev
+  libtbb-dev  # the per-point loops of a scan on more than one core (the `threads` setting)
   libyaml-cpp-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libnanoflann-dev
   nlohmann-json3-dev libpng-dev liblzf-dev
   librosbag-storage-dev libroscpp-dev libroscpp-core-dev

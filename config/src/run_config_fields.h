@@ -30,6 +30,10 @@ void VisitFields(V& v, RunConfig& run) {
   v("backend", p.estimator.backend,
     "the estimator: the iterated error-state Kalman filter, or the sliding-window smoother "
     "(IMU preintegration and point-to-plane factors over the last scans, solved by Ceres)");
+  v("threads", p.threads,
+    "threads for each scan's per-point work (preprocessing, plane association, both "
+    "back-ends' residuals): 0 = every core, 1 = one thread; the poses are the same for any "
+    "value, >= 0");
   v.Section("lidar", lidar, "the lidar stream in the log, and its clock");
   v.OptionalSection("imu", imu, p.imu.enabled,
                     "the IMU stream in the log and its sensor model; `imu: none` runs "

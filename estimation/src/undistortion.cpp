@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "hylo/registration/parallel.h"
+
 namespace hylo::estimation {
 
 PointCloud PointsOf(const LidarScan& scan) {
@@ -39,28 +41,31 @@ SweepMotion::SweepMotion(int64_t start_ns, int64_t end_ns, const Estimator& esti
   }
 }
 
+Eigen::Vector3f SweepMotion::ToSweepEnd(int64_t scan_t_ns, const ScanPoint& p) const {
+  const int64_t t = scan_t_ns + p.offset_ns;
+  const std::size_t hi = std::min<std::size_t>(
+      std::upper_bound(times_ns_.begin(), times_ns_.end(), t) - times_ns_.begin(),
+      times_ns_.size() - 1);
+  const std::size_t lo = hi == 0 ? 0 : hi - 1;
+  const double span = static_cast<double>(times_ns_[hi] - times_ns_[lo]);
+  const double w = span > 0.0 ? std::clamp((t - times_ns_[lo]) / span, 0.0, 1.0) : 0.0;
+  Eigen::Quaterniond q;
+  if (use_nlerp_[lo]) {
+    q.coeffs() = (1.0 - w) * rotations_[lo].coeffs() + w * rotations_[hi].coeffs();
+    q.normalize();
+  } else {
+    q = rotations_[lo].slerp(w, rotations_[hi]);
+  }
+  const Eigen::Vector3d trans = (1.0 - w) * translations_[lo] + w * translations_[hi];
+  return (q * p.position_lidar.cast<double>() + trans).cast<float>();
+}
+
 PointCloud SweepMotion::ToSweepEnd(const LidarScan& scan) const {
   if (times_ns_.empty()) return PointsOf(scan);
-  PointCloud points;
-  points.reserve(scan.points.size());
-  for (const ScanPoint& p : scan.points) {
-    const int64_t t = scan.t_ns + p.offset_ns;
-    const std::size_t hi = std::min<std::size_t>(
-        std::upper_bound(times_ns_.begin(), times_ns_.end(), t) - times_ns_.begin(),
-        times_ns_.size() - 1);
-    const std::size_t lo = hi == 0 ? 0 : hi - 1;
-    const double span = static_cast<double>(times_ns_[hi] - times_ns_[lo]);
-    const double w = span > 0.0 ? std::clamp((t - times_ns_[lo]) / span, 0.0, 1.0) : 0.0;
-    Eigen::Quaterniond q;
-    if (use_nlerp_[lo]) {
-      q.coeffs() = (1.0 - w) * rotations_[lo].coeffs() + w * rotations_[hi].coeffs();
-      q.normalize();
-    } else {
-      q = rotations_[lo].slerp(w, rotations_[hi]);
-    }
-    const Eigen::Vector3d trans = (1.0 - w) * translations_[lo] + w * translations_[hi];
-    points.push_back((q * p.position_lidar.cast<double>() + trans).cast<float>());
-  }
+  PointCloud points(scan.points.size());
+  registration::ParallelFor(scan.points.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) points[i] = ToSweepEnd(scan.t_ns, scan.points[i]);
+  });
   return points;
 }
 

@@ -26,9 +26,9 @@ MeasurementQueueOptions QueueOptions(const estimation::ImuOptions& imu) {
   return q;
 }
 
-double CpuMs() {
+double CpuMs(clockid_t clock = CLOCK_THREAD_CPUTIME_ID) {
   timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  clock_gettime(clock, &ts);
   return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
@@ -74,7 +74,8 @@ bool OdometryPipelineOptions::IsValid(std::string* why) const {
          estimator.IsValid(why) && CheckSection(initial_uncertainty, "initial_uncertainty", why) &&
          CheckSection(init, "init", why) && CheckSection(preprocess, "preprocess", why) &&
          CheckSection(planes, "planes", why) && CheckSection(map, "map", why) &&
-         CheckSection(localization, "localization", why) && CheckSection(output, "output", why);
+         CheckSection(localization, "localization", why) && CheckSection(output, "output", why) &&
+         CheckAtLeast("threads", threads, 0, "(0 = every core, 1 = the calling thread alone)", why);
 }
 
 OdometryPipeline::OdometryPipeline(const OdometryPipelineOptions& options)
@@ -88,6 +89,7 @@ OdometryPipeline::OdometryPipeline(const OdometryPipelineOptions& options)
       twist_(options.imu) {
   std::string why;
   if (!options_.IsValid(&why)) throw InternalError("invalid options: " + why);
+  threads_ = std::make_unique<registration::ThreadLimit>(options_.threads);
 }
 
 OdometryPipeline::~OdometryPipeline() = default;
@@ -124,6 +126,10 @@ PipelineCounters OdometryPipeline::counters() const {
 }
 
 void OdometryPipeline::Process(std::vector<ScanResult>* results, bool flush) {
+  threads_->Run([&] { ProcessQueued(results, flush); });
+}
+
+void OdometryPipeline::ProcessQueued(std::vector<ScanResult>* results, bool flush) {
   MeasurementGroup group;
   while (status_ != Status::kFailed && queue_.Pop(&group, flush)) {
     if (status_ == Status::kInitializing) {
@@ -151,7 +157,7 @@ void OdometryPipeline::Process(std::vector<ScanResult>* results, bool flush) {
 
 void OdometryPipeline::Finish(std::vector<ScanResult>* results) {
   Process(results, /*flush=*/true);
-  estimator_->Finish();
+  threads_->Run([&] { estimator_->Finish(); });
 }
 
 std::vector<estimation::NavState> OdometryPipeline::TakeFinalizedStates() {
@@ -193,6 +199,7 @@ bool OdometryPipeline::FollowStreamedPrior() {
 bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) {
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start_ms = CpuMs();
+  const double process_cpu_start_ms = CpuMs(CLOCK_PROCESS_CPUTIME_ID);
   if (map_.streamed() && !FollowStreamedPrior()) return false;
   const bool blind_gap = RestartAfterBlindGap(group->scan.end_t_ns, group->imu);
   std::vector<int64_t> knots;
@@ -293,6 +300,7 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
   twist_.Fill(group->imu, *estimator_, result);
   result->total_ms = MsSince(start);
   result->cpu_ms = CpuMs() - cpu_start_ms;
+  result->process_cpu_ms = CpuMs(CLOCK_PROCESS_CPUTIME_ID) - process_cpu_start_ms;
   return true;
 }
 

@@ -9,6 +9,7 @@
 
 #include "hylo/common/check.h"
 #include "hylo/common/voxel_key.h"
+#include "hylo/registration/parallel.h"
 
 namespace hylo::registration {
 namespace {
@@ -96,6 +97,15 @@ void VoxelKeyOf(const Eigen::Vector3f& point, float voxel_size_m, int32_t* key) 
   key[2] = static_cast<int32_t>(voxel.z());
 }
 
+// Which of `parts` a voxel belongs to: the top bits of a mix of its key, independent of the
+// bits VoxelTable::Home takes (a part's voxels spread over all of its table's slots).
+int PartOf(const int32_t* key, int parts) {
+  const uint64_t h = (static_cast<uint64_t>(static_cast<uint32_t>(key[0])) * 73856093u) ^
+                     (static_cast<uint64_t>(static_cast<uint32_t>(key[1])) * 19349663u) ^
+                     (static_cast<uint64_t>(static_cast<uint32_t>(key[2])) * 83492791u);
+  return static_cast<int>(((h * 0x9E3779B97F4A7C15ull) >> 56) % static_cast<uint64_t>(parts));
+}
+
 enum class Offer { kNewVoxel, kReplaces, kRejected };
 
 // Offers `point` to its voxel in `table`. A new voxel records `next_position` (the caller
@@ -119,6 +129,17 @@ Offer OfferPoint(const Eigen::Vector3f& point, float voxel_size_m, uint32_t next
   return Offer::kReplaces;
 }
 
+std::vector<std::size_t> UniformSampleIndicesInParts(const PointCloud& points, float voxel_size_m,
+                                                     int parts);
+
+// Sized for half the points as voxels: a 0.5 m scan voxel keeps ~10 % of a 16-beam scan,
+// a 0.1 m dense copy ~60 %, and growing (rehashing) mid-scan cost more than a larger
+// clear. Map-sized clouds start at 1M voxels (40 MiB) and grow only if they need to.
+std::size_t ExpectedVoxels(std::size_t points) {
+  constexpr std::size_t kMaxInitialVoxels = std::size_t{1} << 20;
+  return std::min(points / 2, kMaxInitialVoxels) + 16;
+}
+
 }  // namespace
 
 std::vector<std::size_t> UniformSampleIndices(const PointCloud& points, float voxel_size_m) {
@@ -128,12 +149,14 @@ std::vector<std::size_t> UniformSampleIndices(const PointCloud& points, float vo
     std::iota(kept.begin(), kept.end(), 0);
     return kept;
   }
+  // Below a few thousand points the parts cost more than they save.
+  constexpr std::size_t kMinPointsInParts = 4096;
+  const int threads = ParallelThreads();
+  if (threads > 1 && points.size() >= kMinPointsInParts) {
+    return UniformSampleIndicesInParts(points, voxel_size_m, threads);
+  }
   thread_local VoxelTable table;
-  // Sized for half the points as voxels: a 0.5 m scan voxel keeps ~10 % of a 16-beam scan,
-  // a 0.1 m dense copy ~60 %, and growing (rehashing) mid-scan cost more than a larger
-  // clear. Map-sized clouds start at 1M voxels (40 MiB) and grow only if they need to.
-  constexpr std::size_t kMaxInitialVoxels = std::size_t{1} << 20;
-  table.Reset(std::min(points.size() / 2, kMaxInitialVoxels) + 16);
+  table.Reset(ExpectedVoxels(points.size()));
   for (std::size_t i = 0; i < points.size(); ++i) {
     uint32_t position = 0;
     switch (OfferPoint(points[i], voxel_size_m, static_cast<uint32_t>(kept.size()), &table,
@@ -145,6 +168,56 @@ std::vector<std::size_t> UniformSampleIndices(const PointCloud& points, float vo
   }
   return kept;
 }
+
+namespace {
+
+// UniformSampleIndices with the voxels split into `parts` by PartOf, each part sampled on its
+// own table (in parallel), and the same result: the kept list holds each voxel's point nearest
+// its centre (the earliest on a tie) at the place of the voxel's first point, so the parts'
+// voxels, written at their first points' indices, merge in that order.
+std::vector<std::size_t> UniformSampleIndicesInParts(const PointCloud& points, float voxel_size_m,
+                                                     int parts) {
+  const std::size_t n = points.size();
+  std::vector<uint8_t> part_of(n);
+  ParallelFor(n, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      int32_t key[3];
+      VoxelKeyOf(points[i], voxel_size_m, key);
+      part_of[i] = static_cast<uint8_t>(PartOf(key, parts));
+    }
+  });
+  // kept_at_first[i]: 1 + the kept index of the voxel whose first point is i; 0 for none.
+  std::vector<uint32_t> kept_at_first(n, 0);
+  ParallelTasks(parts, [&](int part) {
+    thread_local VoxelTable table;
+    table.Reset(ExpectedVoxels(n) / static_cast<std::size_t>(parts) + 16);
+    std::vector<uint32_t> first, best;  // per voxel of this part, in order of appearance
+    for (std::size_t i = 0; i < n; ++i) {
+      if (part_of[i] != part) continue;
+      uint32_t position = 0;
+      switch (OfferPoint(points[i], voxel_size_m, static_cast<uint32_t>(first.size()), &table,
+                         &position)) {
+        case Offer::kNewVoxel:
+          first.push_back(static_cast<uint32_t>(i));
+          best.push_back(static_cast<uint32_t>(i));
+          break;
+        case Offer::kReplaces:
+          best[position] = static_cast<uint32_t>(i);
+          break;
+        case Offer::kRejected:
+          break;
+      }
+    }
+    for (std::size_t v = 0; v < first.size(); ++v) kept_at_first[first[v]] = best[v] + 1;
+  });
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (kept_at_first[i] != 0) kept.push_back(kept_at_first[i] - 1);
+  }
+  return kept;
+}
+
+}  // namespace
 
 class UniformSampler::Table : public VoxelTable {};
 

@@ -10,6 +10,7 @@
 
 #include "hylo/estimation/ieskf/ieskf.h"
 #include "hylo/estimation/lidar_update.h"
+#include "hylo/registration/parallel.h"
 #include "hylo/registration/point_to_plane.h"
 
 namespace hylo::estimation {
@@ -65,10 +66,12 @@ void Ieskf::Associate(const NavState& x, const DeskewedScan& scan,
   planes_.resize(n);
   matched_.assign(n, 0);
   const lie::SE3d T_map_lidar = x.T_map_lidar();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d p_map = T_map_lidar * scan.points_lidar[i].cast<double>();
-    matched_[i] = planes.Match(p_map, &planes_[i]) ? 1 : 0;
-  }
+  registration::ParallelFor(n, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const Eigen::Vector3d p_map = T_map_lidar * scan.points_lidar[i].cast<double>();
+      matched_[i] = planes.Match(p_map, &planes_[i]) ? 1 : 0;
+    }
+  });
 }
 
 Ieskf::LidarSystem Ieskf::BuildLidarSystem(const NavState& x, const DeskewedScan& scan,

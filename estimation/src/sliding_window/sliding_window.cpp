@@ -8,6 +8,7 @@
 #include "hylo/common/check.h"
 #include "hylo/estimation/imu_propagation.h"
 #include "hylo/estimation/lidar_update.h"
+#include "hylo/registration/parallel.h"
 #include "sliding_window_state.h"
 
 namespace hylo::estimation {
@@ -108,12 +109,21 @@ std::size_t SlidingWindow::AssociateNewest(const registration::PlaneMatcher& pla
   WindowState& newest = *window_.back();
   const lie::SE3d T_map_imu = StateAt(window_.size() - 1).T_map_imu();
   newest.matches.clear();
-  registration::Plane plane;
-  for (std::size_t i = 0; i < newest.points_imu.size(); ++i) {
-    const Eigen::Vector3d p_map = T_map_imu * newest.points_imu[i];
-    if (!planes.Match(p_map, &plane)) continue;
-    if (!planes.PassesGate(plane.Distance(p_map), newest.ranges_m[i])) continue;
-    newest.matches.push_back({newest.points_imu[i], plane, 1.0, static_cast<uint32_t>(i)});
+  const std::size_t n = newest.points_imu.size();
+  // Each point's plane on its own slot, then the matches in point order: the same whatever
+  // the number of threads.
+  std::vector<registration::Plane> plane(n);
+  std::vector<char> kept(n, 0);
+  registration::ParallelFor(n, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const Eigen::Vector3d p_map = T_map_imu * newest.points_imu[i];
+      kept[i] = planes.Match(p_map, &plane[i]) &&
+                planes.PassesGate(plane[i].Distance(p_map), newest.ranges_m[i]);
+    }
+  });
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!kept[i]) continue;
+    newest.matches.push_back({newest.points_imu[i], plane[i], 1.0, static_cast<uint32_t>(i)});
   }
   return newest.matches.size();
 }

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "hylo/estimation/sliding_window/so3_manifold.h"
+#include "hylo/registration/parallel.h"
 #include "hylo/registration/point_to_plane.h"
 
 namespace hylo::estimation {
@@ -116,20 +117,23 @@ bool ScanPlaneFactor::Evaluate(double const* const* parameters, double* residual
   const bool want_position = jacobians != nullptr && jacobians[1] != nullptr;
   // P⁺ = 4 Pᵀ of the rotation's PlusJacobian, so ambient row = tangent row · P⁺.
   const Eigen::Matrix<double, 3, 4> lift = 4.0 * RotationPlusJacobian(parameters[0]).transpose();
-  for (std::size_t k = 0; k < matches_.size(); ++k) {
-    const PlaneMatch& m = matches_[k];
-    residuals[k] = m.sqrt_weight * m.plane.Distance(R * m.point_imu + p);
-    if (!want_rotation && !want_position) continue;
-    // The point-to-plane factor of every solver (registration/point_to_plane.h).
-    const registration::Vector6 J =
-        m.sqrt_weight * registration::PointToPlaneJacobian(R, m.point_imu, m.plane);
-    if (want_rotation) {
-      Eigen::Map<Eigen::RowVector4d>(jacobians[0] + 4 * k) = J.head<3>().transpose() * lift;
+  // Each match writes its own residual and Jacobian rows: any number of threads.
+  registration::ParallelFor(matches_.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const PlaneMatch& m = matches_[k];
+      residuals[k] = m.sqrt_weight * m.plane.Distance(R * m.point_imu + p);
+      if (!want_rotation && !want_position) continue;
+      // The point-to-plane factor of every solver (registration/point_to_plane.h).
+      const registration::Vector6 J =
+          m.sqrt_weight * registration::PointToPlaneJacobian(R, m.point_imu, m.plane);
+      if (want_rotation) {
+        Eigen::Map<Eigen::RowVector4d>(jacobians[0] + 4 * k) = J.head<3>().transpose() * lift;
+      }
+      if (want_position) {
+        Eigen::Map<Eigen::RowVector3d>(jacobians[1] + 3 * k) = J.tail<3>().transpose();
+      }
     }
-    if (want_position) {
-      Eigen::Map<Eigen::RowVector3d>(jacobians[1] + 3 * k) = J.tail<3>().transpose();
-    }
-  }
+  });
   return true;
 }
 

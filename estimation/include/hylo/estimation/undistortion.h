@@ -31,6 +31,8 @@ class SweepMotion {
   PointCloud ToSweepEnd(const LidarScan& scan) const;
 
  private:
+  Eigen::Vector3f ToSweepEnd(int64_t scan_t_ns, const ScanPoint& point) const;
+
   std::vector<int64_t> times_ns_;              // knots: start, inside, end
   std::vector<Eigen::Quaterniond> rotations_;  // T_end_lidar(t) rotation at each knot
   std::vector<Eigen::Vector3d> translations_;  // ... and translation, m

@@ -29,6 +29,7 @@
 #include "hylo/odometry/scan_preprocessor.h"
 #include "hylo/odometry/scan_result.h"
 #include "hylo/odometry/twist.h"
+#include "hylo/registration/parallel.h"
 #include "hylo/registration/plane_matcher.h"
 
 namespace hylo::odometry {
@@ -72,6 +73,10 @@ struct OdometryPipelineOptions {
   lie::SE3d T_imu_lidar;                     ///< extrinsic (the filter may refine it online)
   bool update_map = true;                    ///< SLAM (no prior map): add registered scans to
                                              ///< the map. With a prior, update_after_s rules
+  /// Threads for a scan's per-point work (preprocessing, plane association, the residuals of
+  /// both back-ends): 0 = every core, 1 = the calling thread alone. The results are the same
+  /// for every value (each point's work writes only its own outputs; sums run in point order).
+  int threads = 0;
   bool IsValid(std::string* why) const;
 };
 
@@ -155,6 +160,7 @@ class OdometryPipeline {
   // A tiled prior before each scan: the loader's news, its failures, on or off the tiles.
   bool FollowStreamedPrior();
   // odometry_pipeline.cpp
+  void ProcessQueued(std::vector<ScanResult>* results, bool flush);  // Process, on threads_
   bool ProcessScan(MeasurementGroup* group, ScanResult* result);
   void UpdateMap(const estimation::DeskewedScan& scan, ScanResult* result);
 
@@ -165,6 +171,7 @@ class OdometryPipeline {
   std::unique_ptr<estimation::Estimator> estimator_;
   mapping::MapManager map_;
   registration::PlaneMatcher matcher_;
+  std::unique_ptr<registration::ThreadLimit> threads_;         // options_.threads, around Process
   std::unique_ptr<localization::GlobalSearch> global_search_;  // with a prior map
   // Declared after the map and the global search it reads: destroyed first, it waits for a
   // global attempt still running on its worker thread before they go.

@@ -36,6 +36,10 @@ struct ScanResult {
   bool map_updated = false;
   double deskew_ms = 0.0, update_ms = 0.0, map_ms = 0.0, total_ms = 0.0;  ///< wall time
   double cpu_ms = 0.0;  ///< CPU time of this thread for the whole scan (robust to a busy host)
+  /// CPU time of the whole process over the scan: with `threads` > 1, this thread's and the
+  /// helpers' that shared its loops (and any other thread of the process running meanwhile,
+  /// e.g. a background search or the tile loader).
+  double process_cpu_ms = 0.0;
   /// Body-frame twist of the IMU at t_ns: linear = R_map_imuᵀ v_map_imu (m/s), angular = the
   /// last gyro sample minus its bias (rad/s; without IMU, from the last two poses).
   Eigen::Vector3d linear_velocity_imu = Eigen::Vector3d::Zero();
