@@ -206,7 +206,18 @@ void SlidingWindow::Correct(const DeskewedScan& scan, const registration::PlaneM
     Solve(&report, o.max_solver_time_s / o.association_rounds);
     summary->iterations += report.iterations;
     summary->converged = report.converged;
+    summary->out_of_time = summary->out_of_time || report.out_of_time;
     summary->applied = true;
+  }
+  if (summary->iterations == 0) {
+    // The budget ended every round before its first iteration (a loaded machine): the state
+    // is the prediction, and the update must not be reported as a lidar correction.
+    summary->message =
+        "the solve's time budget (sliding_window.max_solver_time_s) ended "
+        "before its first iteration: the prediction stands";
+    newest.blocks = predicted;
+    summary->applied = false;
+    return;
   }
   LearnFromUpdate(predicted_state, StateAt(window_.size() - 1));
 }

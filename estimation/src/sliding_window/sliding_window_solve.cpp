@@ -112,6 +112,9 @@ void SlidingWindow::Solve(SolveReport* report, double budget_s) {
   ceres::Solve(solver, &problem, &summary);
   report->iterations = static_cast<int>(summary.iterations.size()) - 1;  // [0] is the start
   report->converged = summary.termination_type == ceres::CONVERGENCE;
+  // Ceres ends without convergence when out of iterations or out of time.
+  report->out_of_time =
+      summary.termination_type == ceres::NO_CONVERGENCE && report->iterations < o.max_iterations;
 }
 
 void SlidingWindow::MarginalizeOldest() {

@@ -53,6 +53,10 @@ struct UpdateSummary {
   /// The IMU showed the vehicle at rest over the interval: the back-end holds v = 0 beside the
   /// scan wherever its update runs (standstill.h).
   bool standstill = false;
+  /// The solve stopped at its wall-time budget (sliding_window.max_solver_time_s) before it
+  /// converged or ran all its iterations: the state then depends on the machine's speed and
+  /// load. Without one iteration the update is not applied (the prediction stands).
+  bool out_of_time = false;
   /// Per offered point, its point-to-plane residual at the final state (m), NaN where the
   /// point had no plane. How well the scan fits the map, without a second search of it.
   std::vector<float> point_residuals_m;

@@ -49,6 +49,7 @@ class SlidingWindow final : public BackendBase {
   struct SolveReport {
     int iterations = 0;
     bool converged = false;
+    bool out_of_time = false;  // stopped at the budget, not converged, iterations left
   };
 
   void AppendState(const DeskewedScan& scan);  // sliding_window.cpp
