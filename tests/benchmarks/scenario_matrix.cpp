@@ -88,6 +88,7 @@ const Setting kSettings[] = {
     {"standstill_noise", [](double v, auto* o) { o->estimator.standstill.velocity_noise_mps = v; }},
     {"sw_rounds",
      [](double v, auto* o) { o->estimator.sliding_window.association_rounds = int(v); }},
+    {"threads", [](double v, auto* o) { o->threads = int(v); }},
     {"sw_iterations",
      [](double v, auto* o) { o->estimator.sliding_window.max_iterations = int(v); }},
 };

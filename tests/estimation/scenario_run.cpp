@@ -52,15 +52,22 @@ ModeFigures Score(const PipelineRun& run, const std::vector<TimedPose>& truth,
                   evaluation::Alignment alignment, std::size_t scans_simulated) {
   ModeFigures f;
   f.ran = true;
-  std::vector<double> cpu;
+  std::vector<double> cpu, wall, process_cpu;
   for (const odometry::ScanResult& r : run.results) {
     cpu.push_back(r.cpu_ms);
+    wall.push_back(r.total_ms);
+    process_cpu.push_back(r.process_cpu_ms);
     f.not_applied += r.update.applied ? 0 : 1;
     f.degenerate += r.update.degenerate ? 1 : 0;
+    f.out_of_time += r.update.out_of_time ? 1 : 0;
   }
   f.scans = run.results.size();
   f.cpu_ms_median = Percentile(cpu, 0.5);
   f.cpu_ms_p99 = Percentile(cpu, 0.99);
+  f.wall_ms_median = Percentile(wall, 0.5);
+  f.wall_ms_p99 = Percentile(wall, 0.99);
+  f.process_cpu_ms_median = Percentile(process_cpu, 0.5);
+  f.process_cpu_ms_p99 = Percentile(process_cpu, 0.99);
   if (run.pipeline.status() == OdometryPipeline::Status::kFailed) {
     f.failed = true;
     f.message = run.pipeline.message();
@@ -269,9 +276,14 @@ io::Json ModeJson(const ModeFigures& f) {
   j["path_m"] = f.path_m;
   j["cpu_ms_median"] = f.cpu_ms_median;
   j["cpu_ms_p99"] = f.cpu_ms_p99;
+  j["wall_ms_median"] = f.wall_ms_median;
+  j["wall_ms_p99"] = f.wall_ms_p99;
+  j["process_cpu_ms_median"] = f.process_cpu_ms_median;
+  j["process_cpu_ms_p99"] = f.process_cpu_ms_p99;
   j["scans"] = f.scans;
   j["not_applied"] = f.not_applied;
   j["degenerate"] = f.degenerate;
+  j["out_of_time"] = f.out_of_time;
   return j;
 }
 
@@ -296,9 +308,18 @@ ModeFigures ModeFromJson(const io::Json& j) {
   f.path_m = number("path_m");
   f.cpu_ms_median = number("cpu_ms_median");
   f.cpu_ms_p99 = number("cpu_ms_p99");
+  // Absent from runs written before they were measured.
+  const auto optional = [&](const char* key) {
+    return j.contains(key) ? number(key) : std::nan("");
+  };
+  f.wall_ms_median = optional("wall_ms_median");
+  f.wall_ms_p99 = optional("wall_ms_p99");
+  f.process_cpu_ms_median = optional("process_cpu_ms_median");
+  f.process_cpu_ms_p99 = optional("process_cpu_ms_p99");
   f.scans = j.at("scans").get<std::size_t>();
   f.not_applied = j.at("not_applied").get<std::size_t>();
   f.degenerate = j.at("degenerate").get<std::size_t>();
+  f.out_of_time = j.value("out_of_time", std::size_t{0});
   return f;
 }
 

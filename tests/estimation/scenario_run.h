@@ -61,7 +61,12 @@ struct ModeFigures {
   double path_m = 0.0;
   double cpu_ms_median = 0.0;  ///< per scan, thread CPU time
   double cpu_ms_p99 = 0.0;
+  double wall_ms_median = 0.0;  ///< per scan, wall time (one pipeline at a time runs)
+  double wall_ms_p99 = 0.0;
+  double process_cpu_ms_median = 0.0;  ///< per scan, CPU time of every thread of the process
+  double process_cpu_ms_p99 = 0.0;
   std::size_t scans = 0, not_applied = 0, degenerate = 0;
+  std::size_t out_of_time = 0;  ///< scans whose solve stopped at its time budget
 };
 
 /// One variant with one back-end.
