@@ -5,7 +5,6 @@
 #include "hylo/common/check.h"
 #include "hylo/common/option_checks.h"
 #include "hylo/common/time.h"
-#include "hylo/registration/parallel.h"
 #include "hylo/registration/voxel_filter.h"
 
 namespace hylo::odometry {
@@ -64,42 +63,28 @@ bool PreprocessOptions::IsValid(std::string* why) const {
 ScanSanitizeReport SanitizeScan(LidarScan* scan, float min_range_m, float max_range_m,
                                 int64_t max_offset_ns) {
   HYLO_CHECK(scan != nullptr);
+  ScanSanitizeReport report;
   const float min_sq = min_range_m * min_range_m;
   const float max_sq = max_range_m * max_range_m;
-  enum Verdict : uint8_t { kKeep, kNonFinite, kOutOfRange, kBadTime };
+  auto keep = [&](const ScanPoint& p) {
+    if (!p.position_lidar.allFinite()) {
+      ++report.dropped_non_finite;
+      return false;
+    }
+    const float r2 = p.position_lidar.squaredNorm();
+    if (r2 < min_sq || r2 > max_sq) {
+      ++report.dropped_out_of_range;
+      return false;
+    }
+    if (p.offset_ns < 0 || p.offset_ns > max_offset_ns) {
+      ++report.dropped_bad_time;
+      return false;
+    }
+    return true;
+  };
   auto& pts = scan->points;
-  // Each point judged on its own (on the pipeline's threads), then counted and compacted in
-  // order on this one.
-  std::vector<uint8_t> verdict(pts.size());
-  registration::ParallelFor(pts.size(), [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      const ScanPoint& p = pts[i];
-      const float r2 = p.position_lidar.squaredNorm();
-      verdict[i] = !p.position_lidar.allFinite()                    ? kNonFinite
-                   : r2 < min_sq || r2 > max_sq                     ? kOutOfRange
-                   : p.offset_ns < 0 || p.offset_ns > max_offset_ns ? kBadTime
-                                                                    : kKeep;
-    }
-  });
-  ScanSanitizeReport report;
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    switch (verdict[i]) {
-      case kKeep:
-        pts[kept++] = pts[i];
-        break;
-      case kNonFinite:
-        ++report.dropped_non_finite;
-        break;
-      case kOutOfRange:
-        ++report.dropped_out_of_range;
-        break;
-      case kBadTime:
-        ++report.dropped_bad_time;
-        break;
-    }
-  }
-  pts.resize(kept);
+  pts.erase(std::remove_if(pts.begin(), pts.end(), [&](const auto& p) { return !keep(p); }),
+            pts.end());
   int32_t last_offset_ns = 0;
   for (const auto& p : pts) last_offset_ns = std::max(last_offset_ns, p.offset_ns);
   scan->end_t_ns = scan->t_ns + last_offset_ns;

@@ -77,24 +77,19 @@ void Ieskf::Associate(const NavState& x, const DeskewedScan& scan,
 Ieskf::LidarSystem Ieskf::BuildLidarSystem(const NavState& x, const DeskewedScan& scan,
                                            const registration::PlaneMatcher& planes) const {
   const PosesAsMatrices poses(x);
-  const std::size_t n = scan.points_lidar.size();
-  linearized_.resize(n);
-  registration::ParallelFor(n, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      registration::LinearizedResidual<12>& l = linearized_[i];
-      l = registration::LinearizedResidual<12>();
-      if (!matched_[i]) continue;
-      const Eigen::Vector3d p = scan.points_lidar[i].cast<double>();
-      ResidualJacobian h;
-      l.matched = true;
-      l.r = Residual(poses, p, planes_[i], &h);
-      l.used = planes.PassesGate(l.r, p.norm());
-      l.J = h.transpose();
-    }
-  });
   return registration::Reduce<12>(
-      n,
-      [&](std::size_t i) -> const registration::LinearizedResidual<12>& { return linearized_[i]; },
+      scan.points_lidar.size(),
+      [&](std::size_t i) {
+        registration::LinearizedResidual<12> l;
+        if (!matched_[i]) return l;
+        const Eigen::Vector3d p = scan.points_lidar[i].cast<double>();
+        ResidualJacobian h;
+        l.matched = true;
+        l.r = Residual(poses, p, planes_[i], &h);
+        l.used = planes.PassesGate(l.r, p.norm());
+        l.J = h.transpose();
+        return l;
+      },
       registration::RobustKernel::None());
 }
 

@@ -62,7 +62,7 @@ NormalEquations<N> Reduce(std::size_t n, const Linearize& linearize, const Robus
   NormalEquations<N> eq;
   const bool weighted = kernel.type != RobustKernel::Type::kNone;
   for (std::size_t i = 0; i < n; ++i) {
-    const LinearizedResidual<N>& l = linearize(i);  // a value or a reference to one
+    const LinearizedResidual<N> l = linearize(i);
     if (!l.matched) continue;
     ++eq.matched;
     if (std::abs(l.r) < inlier_m) ++eq.inliers;

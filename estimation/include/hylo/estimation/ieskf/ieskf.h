@@ -54,9 +54,6 @@ class Ieskf final : public BackendBase {
   StateCovariance P_ = StateCovariance::Identity();
   std::vector<registration::Plane> planes_;  // per scan point, valid where matched_[i]
   std::vector<char> matched_;
-  // Per scan point, its residual linearized at the iteration's state: filled by several
-  // threads, then summed in point order (BuildLidarSystem).
-  mutable std::vector<registration::LinearizedResidual<12>> linearized_;
 };
 
 }  // namespace hylo::estimation
