@@ -149,11 +149,13 @@ std::vector<std::size_t> UniformSampleIndices(const PointCloud& points, float vo
     std::iota(kept.begin(), kept.end(), 0);
     return kept;
   }
-  // Below a few thousand points the parts cost more than they save.
+  // Below a few thousand points the parts cost more than they save; each part reads every
+  // point's part number, so more parts than a few dozen would cost more than they save too.
   constexpr std::size_t kMinPointsInParts = 4096;
+  constexpr int kMaxParts = 32;
   const int threads = ParallelThreads();
   if (threads > 1 && points.size() >= kMinPointsInParts) {
-    return UniformSampleIndicesInParts(points, voxel_size_m, threads);
+    return UniformSampleIndicesInParts(points, voxel_size_m, std::min(threads, kMaxParts));
   }
   thread_local VoxelTable table;
   table.Reset(ExpectedVoxels(points.size()));
@@ -171,8 +173,8 @@ std::vector<std::size_t> UniformSampleIndices(const PointCloud& points, float vo
 
 namespace {
 
-// UniformSampleIndices with the voxels split into `parts` by PartOf, each part sampled on its
-// own table (in parallel), and the same result: the kept list holds each voxel's point nearest
+// UniformSampleIndices with the voxels split into `parts` (<= 255) by PartOf, each part sampled on
+// its own table (in parallel), and the same result: the kept list holds each voxel's point nearest
 // its centre (the earliest on a tie) at the place of the voxel's first point, so the parts'
 // voxels, written at their first points' indices, merge in that order.
 std::vector<std::size_t> UniformSampleIndicesInParts(const PointCloud& points, float voxel_size_m,
