@@ -1,14 +1,14 @@
 // The `threads` setting on every kind of head: one scenario per sensor kind of the generator
-// (VLP-16, RS-16, XT32, OS-64, OS-128, Livox rosette), SLAM with each back-end at 1 and 2
-// threads (and 4 where the machine has that many cores), all fed by one simulation pass. Per
-// scan: wall time (what a live node waits), the process's CPU time (every thread's work) and
-// the scan thread's CPU time, median and p99; the ATE after SE(3) alignment; and, per head and
-// back-end, the wall median at n threads over the one at 1 thread; the scans whose solve its
-// wall-time budget stopped (the sliding window). The poses must not depend on the number of
-// threads: the ATE is printed to six digits, and a difference is an error unless a solve was
-// stopped by its budget (then the poses depend on the machine's speed at any thread count). Figures
-// are printed and written as JSON, never asserted. Other processes on the machine make the wall and
-// the p99 figures worse; run it on a quiet one.
+// (VLP-16, RS-16, XT32, OS-64, OS-128, Livox rosette), SLAM with each back-end at 1 and 2 threads
+// (and 4 where the machine has that many cores), all fed by one simulation pass. Per scan: wall
+// time (what a live node waits), the process's CPU time (every thread's work) and the scan thread's
+// CPU time, median and p99; the ATE after SE(3) alignment; and, per head and back-end, the wall
+// median at n threads over the one at 1 thread; the scans whose solve its wall-time budget stopped
+// (the sliding window). The poses must not depend on the number of threads: the ATE is printed to
+// six digits, and a difference is an error unless a solve was stopped by its budget (then the poses
+// depend on the machine's speed at any thread count). Figures are printed and written as JSON,
+// never asserted. Other processes on the machine make the wall and the p99 figures worse; run it on
+// a quiet one.
 //
 //   hylo_threads_benchmark [--scenarios 0,2,4,6,8,10] [--backends ieskf,sliding_window]
 //                          [--threads 1,2] [--max-drive S] [--preset-dir DIR] [--json PATH]

@@ -112,18 +112,19 @@ std::size_t SlidingWindow::AssociateNewest(const registration::PlaneMatcher& pla
   const std::size_t n = newest.points_imu.size();
   // Each point's plane on its own slot, then the matches in point order: the same whatever
   // the number of threads.
-  std::vector<registration::Plane> plane(n);
-  std::vector<char> kept(n, 0);
+  point_planes_.resize(n);
+  point_matched_.resize(n);
   registration::ParallelFor(n, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const Eigen::Vector3d p_map = T_map_imu * newest.points_imu[i];
-      kept[i] = planes.Match(p_map, &plane[i]) &&
-                planes.PassesGate(plane[i].Distance(p_map), newest.ranges_m[i]);
+      point_matched_[i] = planes.Match(p_map, &point_planes_[i]) &&
+                          planes.PassesGate(point_planes_[i].Distance(p_map), newest.ranges_m[i]);
     }
   });
   for (std::size_t i = 0; i < n; ++i) {
-    if (!kept[i]) continue;
-    newest.matches.push_back({newest.points_imu[i], plane[i], 1.0, static_cast<uint32_t>(i)});
+    if (!point_matched_[i]) continue;
+    newest.matches.push_back(
+        {newest.points_imu[i], point_planes_[i], 1.0, static_cast<uint32_t>(i)});
   }
   return newest.matches.size();
 }

@@ -72,6 +72,9 @@ class SlidingWindow final : public BackendBase {
   StateCovariance initial_covariance_ = StateCovariance::Identity();
   std::deque<std::unique_ptr<WindowState>> window_;  // oldest first; stable block addresses
   std::unique_ptr<MarginalPrior> prior_;
+  // AssociateNewest's per-point scratch, kept from scan to scan (no allocation per round).
+  std::vector<registration::Plane> point_planes_;
+  std::vector<char> point_matched_;
 };
 
 }  // namespace hylo::estimation
