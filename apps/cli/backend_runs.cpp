@@ -108,6 +108,13 @@ void ReadChildOutputs(const BackendRunsRequest& request, BackendRun* run) {
   run->trajectory = io::ReadTum(run->dir + "/trajectory.tum");
   if (!request.ground_truth.empty()) {
     run->ate = EvaluateTrajectory(run->trajectory, request.ground_truth, request.rpe_delta_m, &row);
+    // The live states beside the finalized ones: a smoother earns its cost where they differ.
+    const std::string live_path = run->dir + "/trajectory_live.tum";
+    if (std::filesystem::exists(live_path)) {
+      const evaluation::AteResult live = evaluation::ComputeAte(
+          ToTimed(io::ReadTum(live_path)), ToTimed(io::ReadTum(request.ground_truth)), {});
+      if (live.ok) row.ate_live_rmse_m = live.rmse_m;
+    }
   }
 }
 

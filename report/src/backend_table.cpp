@@ -22,6 +22,7 @@ const Column kColumns[] = {
     {"c2c mean [m]", "c2c_mean_m", &BackendRow::c2c_mean_m, 4},
     {"c2c std [m]", "c2c_std_m", &BackendRow::c2c_std_m, 4},
     {"ATE RMSE [m]", "ate_rmse_m", &BackendRow::ate_rmse_m, 4},
+    {"live ATE [m]", "ate_live_rmse_m", &BackendRow::ate_live_rmse_m, 4},
     {"RPE RMSE [m]", "rpe_rmse_m", &BackendRow::rpe_rmse_m, 4},
     {"ms/scan median", "ms_per_scan_median", &BackendRow::ms_per_scan_median, 2},
     {"ms/scan p99", "ms_per_scan_p99", &BackendRow::ms_per_scan_p99, 2},

@@ -48,6 +48,7 @@ TEST(CompareCliTest, EveryBackendOnOneSessionInOneTable) {
     EXPECT_TRUE(fs::exists(dir + "/cmp/" + backend + "/trajectory.tum")) << backend;
     // SLAM over ~10 m: a working back-end stays within decimetres (loose: a sanity bound).
     EXPECT_LT(io::NumberAt(row, "ate_rmse_m"), 0.2) << backend;
+    EXPECT_LT(io::NumberAt(row, "ate_live_rmse_m"), 0.2) << backend;
     EXPECT_GT(io::NumberAt(row, "rpe_rmse_m"), 0.0) << backend;
     EXPECT_TRUE(std::isnan(io::NumberAt(row, "c2c_mean_m"))) << "no prior map: no c2c";
     // Own process: more than an empty process, far less than the whole machine.

@@ -301,6 +301,7 @@ double Median(std::vector<double> v) {
 struct Stats {
   std::size_t count = 0, failed = 0;
   double ate_median = std::nan(""), ate_worst = std::nan("");
+  double ate_live_median = std::nan("");  // the live states'
   double drift_median = std::nan(""), drift_worst = std::nan("");
   double cpu_median = std::nan(""), cpu_worst = std::nan("");
   uint64_t worst_number = 0;
@@ -314,7 +315,7 @@ const ModeFigures& Mode(const BackendFigures& run, bool slam) {
 Stats Summarize(const std::vector<ScenarioFigures>& all, std::size_t run_index, bool slam,
                 int parity) {
   Stats s;
-  std::vector<double> ate, drift, cpu;
+  std::vector<double> ate, ate_live, drift, cpu;
   for (const ScenarioFigures& f : all) {
     if (parity >= 0 && static_cast<int>(f.number % 2) != parity) continue;
     if (run_index >= f.runs.size() || !Mode(f.runs[run_index], slam).ran) continue;
@@ -329,12 +330,14 @@ Stats Summarize(const std::vector<ScenarioFigures>& all, std::size_t run_index, 
       continue;
     }
     ate.push_back(m.ate_m);
+    if (!std::isnan(m.ate_live_m)) ate_live.push_back(m.ate_live_m);
     drift.push_back(m.end_drift_percent);
     cpu.push_back(m.cpu_ms_median);
   }
   if (ate.empty()) return s;
   s.ate_median = Median(ate);
   s.ate_worst = *std::max_element(ate.begin(), ate.end());
+  s.ate_live_median = Median(ate_live);
   s.drift_median = Median(drift);
   s.drift_worst = *std::max_element(drift.begin(), drift.end());
   s.cpu_median = Median(cpu);
@@ -348,6 +351,7 @@ hylo::io::Json StatsJson(const Stats& s, bool slam) {
   j["failed"] = s.failed;
   j["ate_median_m"] = s.ate_median;
   j["ate_worst_m"] = s.ate_worst;
+  j["ate_live_median_m"] = s.ate_live_median;
   if (slam) {
     j["drift_median_percent"] = s.drift_median;
     j["drift_worst_percent"] = s.drift_worst;
@@ -388,12 +392,66 @@ void PrintWorst(const std::vector<ScenarioFigures>& all, std::size_t run_index, 
   }
 }
 
+// Each back-end's ATE over the filter's on the same scenario and variant (finalized and live
+// states), median and worst over the scenarios: what a smoother must show against the filter.
+void PrintRatiosToFilter(const std::vector<ScenarioFigures>& all, const Args& args,
+                         hylo::io::Json* summary) {
+  const std::vector<BackendFigures>& runs = all.front().runs;
+  bool header = false;
+  const char* parity_names[3] = {"all", "even", "odd"};
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    if (runs[r].backend == Estimator::Backend::kIeskf) continue;
+    // The filter of the same variant, else the first filter run (the same simulated data).
+    std::size_t filter = runs.size();
+    for (std::size_t k = runs.size(); k-- > 0;) {
+      if (runs[k].backend != Estimator::Backend::kIeskf) continue;
+      if (filter == runs.size() || runs[k].variant == runs[r].variant) filter = k;
+    }
+    if (filter == runs.size()) continue;
+    for (const bool slam : {true, false}) {
+      if (slam ? !args.slam : !args.localization) continue;
+      for (int parity = -1; parity <= 1; ++parity) {
+        std::vector<double> finalized, live;
+        for (const ScenarioFigures& f : all) {
+          if (parity >= 0 && static_cast<int>(f.number % 2) != parity) continue;
+          const ModeFigures& m = Mode(f.runs[r], slam);
+          const ModeFigures& reference = Mode(f.runs[filter], slam);
+          if (!m.ran || !reference.ran || m.failed || reference.failed) continue;
+          finalized.push_back(m.ate_m / reference.ate_m);
+          if (!std::isnan(m.ate_live_m)) live.push_back(m.ate_live_m / reference.ate_m);
+        }
+        if (finalized.empty()) continue;
+        if (!header) {
+          std::printf(
+              "\n| variant | back-end | mode | scenarios | ATE / filter's, finalized median | "
+              "worst | live median | worst |\n|---|---|---|---|---|---|---|---|\n");
+          header = true;
+        }
+        const std::string name = hylo::estimation::ToString(runs[r].backend);
+        std::string mode = slam ? "SLAM" : "localization";
+        if (parity >= 0) mode += std::string(" (") + parity_names[parity + 1] + ")";
+        const double finalized_worst = *std::max_element(finalized.begin(), finalized.end());
+        const double live_worst =
+            live.empty() ? std::nan("") : *std::max_element(live.begin(), live.end());
+        std::printf("| %s | %s | %s | %zu | %.3f | %.3f | %.3f | %.3f |\n", runs[r].variant.c_str(),
+                    name.c_str(), mode.c_str(), finalized.size(), Median(finalized),
+                    finalized_worst, Median(live), live_worst);
+        hylo::io::Json& j = (*summary)[runs[r].variant][name][slam ? "slam" : "localization"]
+                                      [parity_names[parity + 1]];
+        j["ate_over_filter_median"] = Median(finalized);
+        j["ate_over_filter_worst"] = finalized_worst;
+        j["ate_live_over_filter_median"] = Median(live);
+      }
+    }
+  }
+}
+
 hylo::io::Json PrintSummary(const std::vector<ScenarioFigures>& all, const Args& args) {
   hylo::io::Json summary = hylo::io::Json::object();
   std::printf(
       "\n| variant | back-end | mode | scenarios | failed | ATE median | ATE worst | "
-      "drift median | drift worst | CPU ms/scan median | worst scenario |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "live ATE median | drift median | drift worst | CPU ms/scan median | worst scenario |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   const char* parity_names[3] = {"all", "even", "odd"};
   const std::vector<BackendFigures>& runs = all.front().runs;
   for (std::size_t r = 0; r < runs.size(); ++r) {
@@ -405,17 +463,19 @@ hylo::io::Json PrintSummary(const std::vector<ScenarioFigures>& all, const Args&
         if (s.count == 0) continue;
         std::string mode = slam ? "SLAM" : "localization";
         if (parity >= 0) mode += std::string(" (") + parity_names[parity + 1] + ")";
-        std::printf("| %s | %s | %s | %zu | %zu | %.2f cm | %.2f cm | %s | %s | %.1f | #%llu |\n",
-                    runs[r].variant.c_str(), name.c_str(), mode.c_str(), s.count, s.failed,
-                    100 * s.ate_median, 100 * s.ate_worst,
-                    slam ? Percent(s.drift_median).c_str() : "-",
-                    slam ? Percent(s.drift_worst).c_str() : "-", s.cpu_median,
-                    static_cast<unsigned long long>(s.worst_number));
+        std::printf(
+            "| %s | %s | %s | %zu | %zu | %.2f cm | %.2f cm | %.2f cm | %s | %s | %.1f | #%llu |\n",
+            runs[r].variant.c_str(), name.c_str(), mode.c_str(), s.count, s.failed,
+            100 * s.ate_median, 100 * s.ate_worst, 100 * s.ate_live_median,
+            slam ? Percent(s.drift_median).c_str() : "-",
+            slam ? Percent(s.drift_worst).c_str() : "-", s.cpu_median,
+            static_cast<unsigned long long>(s.worst_number));
         summary[runs[r].variant][name][slam ? "slam" : "localization"][parity_names[parity + 1]] =
             StatsJson(s, slam);
       }
     }
   }
+  PrintRatiosToFilter(all, args, &summary);
   for (std::size_t r = 0; r < runs.size(); ++r) {
     for (const bool slam : {true, false}) {
       if (slam ? !args.slam : !args.localization) continue;

@@ -89,6 +89,14 @@ ModeFigures Score(const PipelineRun& run, const std::vector<TimedPose>& truth,
   }
   f.ate_m = ate.rmse_m;
   f.ate_max_m = ate.max_m;
+  std::vector<TimedPose> live;
+  for (const odometry::ScanResult& r : run.results) {
+    if (r.pose_status != odometry::PoseStatus::kValid) continue;
+    live.push_back({r.t_ns, mapping::PoseToWorld(Eigen::Isometry3d(r.state.T_map_imu().Matrix()),
+                                                 run.origin_world)});
+  }
+  const evaluation::AteResult ate_live = evaluation::ComputeAte(live, truth, options);
+  f.ate_live_m = ate_live.ok ? ate_live.rmse_m : std::nan("");
   f.rotation_rmse_deg = ate.rotation_rmse_deg;
   f.end_drift_m = ate.end_drift_m;
   f.end_drift_percent = ate.end_drift_percent;
@@ -267,6 +275,7 @@ io::Json ModeJson(const ModeFigures& f) {
   if (!f.message.empty()) j["message"] = f.message;
   j["ate_m"] = f.ate_m;
   j["ate_max_m"] = f.ate_max_m;
+  j["ate_live_m"] = f.ate_live_m;
   j["rotation_rmse_deg"] = f.rotation_rmse_deg;
   j["end_drift_m"] = f.end_drift_m;
   j["end_drift_percent"] = f.end_drift_percent;
@@ -312,6 +321,7 @@ ModeFigures ModeFromJson(const io::Json& j) {
   const auto optional = [&](const char* key) {
     return j.contains(key) ? number(key) : std::nan("");
   };
+  f.ate_live_m = optional("ate_live_m");
   f.wall_ms_median = optional("wall_ms_median");
   f.wall_ms_p99 = optional("wall_ms_p99");
   f.process_cpu_ms_median = optional("process_cpu_ms_median");

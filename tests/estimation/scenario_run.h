@@ -50,7 +50,9 @@ struct ModeFigures {
   bool ran = false;
   bool failed = false;  ///< the pipeline failed, or fewer than half the scans got a pose
   std::string message;
-  double ate_m = 0.0;  ///< RMSE: SLAM after SE(3) alignment, localization without
+  double ate_m = 0.0;       ///< RMSE of the finalized states: SLAM after SE(3) alignment,
+                            ///< localization without
+  double ate_live_m = 0.0;  ///< the same for the live states (each scan's, at its time)
   double ate_max_m = 0.0;
   double rotation_rmse_deg = 0.0;
   double end_drift_m = 0.0;        ///< SLAM: end position error aligned at the first pose

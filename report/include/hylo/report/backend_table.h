@@ -31,6 +31,9 @@ struct BackendRow {
   double c2c_mean_m = kNaN;              ///< cloud-to-cloud distance, run map to prior: mean, m
   double c2c_std_m = kNaN;               ///< ... standard deviation, m
   double ate_rmse_m = kNaN;              ///< absolute trajectory error (SE(3) aligned): RMSE, m
+                                         ///< of the finalized states (trajectory.tum)
+  double ate_live_rmse_m = kNaN;         ///< ... of the live states (trajectory_live.tum): what a
+                                         ///< robot had at the time; the filter's are its finalized
   double rpe_rmse_m = kNaN;              ///< relative pose error (translation): RMSE, m
   double ms_per_scan_median = kNaN;      ///< wall time per scan: median, ms
   double ms_per_scan_p99 = kNaN;         ///< wall time per scan: 99th percentile, ms
