@@ -102,6 +102,11 @@ void VisitFields(V& v, estimation::SlidingWindowOptions& o) {
   v("robust_loss_scale_m", o.robust_loss_scale_m, "residual where the robust loss bends, m (> 0)");
   v("marginalize", o.marginalize,
     "marginalise the oldest state into a prior; false: drop it (for comparisons only)");
+  v("scan_pairs", o.scan_pairs,
+    "match each new scan's points to planes of the window's earlier scans, which move with "
+    "those scans' poses");
+  v("pair_points", o.pair_points,
+    "most points of a new scan matched to each earlier scan of the window (>= 1)");
 }
 
 template <class V>

@@ -306,6 +306,13 @@ bool LocalizationSupervisor::MapUpdateAllowed(int64_t t_ns, bool update_applied,
   return update_applied && health.good && !lost_;
 }
 
+bool LocalizationSupervisor::ScansExtendMap(int64_t t_ns) const {
+  if (lost_) return false;
+  if (!on_map_) return true;
+  const double after_s = options_.update_after_s;
+  return after_s >= 0.0 && NanosToSeconds(t_ns - start_t_ns_) >= after_s;
+}
+
 void LocalizationSupervisor::AddEvent(LocalizationEvent::Kind kind, int64_t t_ns,
                                       const std::string& message,
                                       const Eigen::Isometry3d& T_map_imu,

@@ -158,26 +158,40 @@ void OdometryPipeline::ProcessQueued(std::vector<ScanResult>* results, bool flus
 void OdometryPipeline::Finish(std::vector<ScanResult>* results) {
   Process(results, /*flush=*/true);
   threads_->Run([&] { estimator_->Finish(); });
+  CollectFinalized();  // the smoother's last window joins the map
 }
 
 std::vector<estimation::NavState> OdometryPipeline::TakeFinalizedStates() {
+  CollectFinalized();
+  std::vector<estimation::NavState> states;
+  states.swap(finalized_);
+  return states;
+}
+
+void OdometryPipeline::CollectFinalized() {
   std::vector<estimation::NavState> finalized;
   estimator_->TakeFinalized(&finalized);
   // A trajectory holds places in the map only: the states of lost scans are left out, and a
-  // relocalized scan is written where the relocalization put it.
-  std::vector<estimation::NavState> states;
-  states.reserve(finalized.size());
+  // relocalized scan is written (and mapped) where the relocalization put it.
   for (estimation::NavState& x : finalized) {
+    // A pending scan older than this state was never finalized as a place in the map.
+    while (!map_pending_.empty() && map_pending_.front().t_ns < x.t_ns) map_pending_.pop_front();
     if (untrusted_t_ns_.count(x.t_ns) != 0) continue;
     const auto replaced = replaced_.find(x.t_ns);
-    states.push_back(replaced == replaced_.end() ? std::move(x) : replaced->second);
+    if (replaced != replaced_.end()) x = replaced->second;
+    if (!map_pending_.empty() && map_pending_.front().t_ns == x.t_ns) {
+      const lie::SE3d T_map_lidar = x.T_map_lidar();
+      map_.AddScan(Transformed(T_map_lidar, map_pending_.front().points_lidar),
+                   T_map_lidar.translation().cast<float>());
+      map_pending_.pop_front();
+    }
+    finalized_.push_back(std::move(x));
   }
   if (!finalized.empty()) {
     untrusted_t_ns_.erase(untrusted_t_ns_.begin(),
                           untrusted_t_ns_.upper_bound(finalized.back().t_ns));
     replaced_.erase(replaced_.begin(), replaced_.upper_bound(finalized.back().t_ns));
   }
-  return states;
 }
 
 bool OdometryPipeline::FollowStreamedPrior() {
@@ -231,6 +245,10 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
   // there. It is propagated only; the supervisor searches for the place.
   estimation::DeskewedScan nothing;
   nothing.t_ns = scan.registration.t_ns;
+  // A search registers against its own scratch map, which takes every scan at once.
+  estimator_->SetScansExtendMap(searching     ? false
+                                : supervisor_ ? supervisor_->ScansExtendMap(scan.registration.t_ns)
+                                              : options_.update_map);
   result->update = estimator_->Update(blind_gap ? nothing : scan.registration,
                                       searching ? supervisor_->search_matcher() : matcher_);
   if (blind_gap) result->update.message = "not registered: the first scan after a gap without IMU";
@@ -291,6 +309,7 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
 
   const auto map_start = std::chrono::steady_clock::now();
   if (result->pose_status != PoseStatus::kProvisional) UpdateMap(scan.registration, result);
+  CollectFinalized();
   result->map_ms = MsSince(map_start);
   // Only a scan placed in the map joins the dense map: a lost or provisional one would smear it.
   if (result->update.applied && result->pose_status == PoseStatus::kValid) {
@@ -310,9 +329,9 @@ void OdometryPipeline::UpdateMap(const estimation::DeskewedScan& scan, ScanResul
                                                            result->health, result->state)
                            : options_.update_map && (map_.Size() == 0 || result->update.applied);
   if (!allowed) return;
-  const lie::SE3d T_map_lidar = result->state.T_map_lidar();
-  map_.AddScan(Transformed(T_map_lidar, scan.points_lidar),
-               T_map_lidar.translation().cast<float>());
+  // Added at its finalized state (CollectFinalized): at once with the filter, when the scan
+  // leaves the smoother's window.
+  map_pending_.push_back({result->t_ns, scan.points_lidar});
   result->map_updated = true;
 }
 

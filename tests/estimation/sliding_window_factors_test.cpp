@@ -116,6 +116,46 @@ TEST(SlidingWindowFactors, ScanPlaneFactorJacobians) {
   ExpectJacobiansCorrect(factor, {&so3, nullptr}, {q.data(), p.data()}, 1e-7);
 }
 
+TEST(SlidingWindowFactors, ScanPairFactorJacobians) {
+  std::mt19937 rng(6);
+  std::vector<PlaneMatch> matches(30);
+  for (PlaneMatch& m : matches) {
+    m.point_imu = RandomVector(&rng, 10.0);
+    m.plane.normal = RandomVector(&rng, 1.0).normalized();  // in the earlier scan's frame
+    m.plane.offset = RandomVector(&rng, 1.0).x();
+    m.sqrt_weight = 50.0;
+  }
+  const ScanPairFactor factor(matches);
+  Eigen::Vector4d q_a = Quaternion(RandomVector(&rng, 1.0));
+  Eigen::Vector3d p_a = RandomVector(&rng, 5.0);
+  Eigen::Vector4d q_b = Quaternion(RandomVector(&rng, 1.0));
+  Eigen::Vector3d p_b = RandomVector(&rng, 5.0);
+  const SO3Manifold so3;
+  ExpectJacobiansCorrect(factor, {&so3, nullptr, &so3, nullptr},
+                         {q_a.data(), p_a.data(), q_b.data(), p_b.data()}, 1e-7);
+}
+
+TEST(SlidingWindowFactors, ScanPairResidualIsThePointsDistanceToThePlaneSeenFromTheEarlierScan) {
+  // Scan b sees the ground z = 0 of the map from 2 m up, level: its plane is z_b = -2. Scan a,
+  // 1 m along x and 1.5 m up, sees a ground point 1.5 m below it: 0 m from the plane, and
+  // raising scan a by 0.1 m raises the point 0.1 m above it.
+  std::vector<PlaneMatch> matches(1);
+  matches[0].point_imu = Eigen::Vector3d(3.0, 0.0, -1.5);
+  matches[0].plane.normal = Eigen::Vector3d::UnitZ();
+  matches[0].plane.offset = 2.0;
+  const ScanPairFactor factor(matches);
+  const Eigen::Vector4d level = Quaternion(Eigen::Vector3d::Zero());
+  Eigen::Vector3d p_a(1.0, 0.0, 1.5);
+  const Eigen::Vector3d p_b(0.0, 0.0, 2.0);
+  const double* parameters[] = {level.data(), p_a.data(), level.data(), p_b.data()};
+  double residual = 1.0;
+  ASSERT_TRUE(factor.Evaluate(parameters, &residual, nullptr));
+  EXPECT_NEAR(residual, 0.0, 1e-12);
+  p_a.z() += 0.1;
+  ASSERT_TRUE(factor.Evaluate(parameters, &residual, nullptr));
+  EXPECT_NEAR(residual, 0.1, 1e-12);
+}
+
 TEST(SlidingWindowFactors, ConstantVelocityFactorJacobians) {
   std::mt19937 rng(5);
   std::unique_ptr<ceres::CostFunction> factor(MakeConstantVelocityFactor(0.1, 0.12, 1.0, 0.5));

@@ -24,6 +24,7 @@ class ConstantTwistEstimator final : public Estimator {
   }
   void Initialize(const NavState&, const StateCovariance&) override {}
   void AddImu(const ImuSample&) override {}
+  void SetScansExtendMap(bool) override {}
   NavState PredictAt(int64_t t_ns) const override {
     NavState x = state_;
     const double t = t_ns * 1e-9;

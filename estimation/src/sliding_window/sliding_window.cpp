@@ -10,6 +10,7 @@
 #include "hylo/estimation/lidar_update.h"
 #include "hylo/registration/parallel.h"
 #include "sliding_window_state.h"
+#include "window_search.h"
 
 namespace hylo::estimation {
 
@@ -103,6 +104,14 @@ void SlidingWindow::SetNewestScan(const DeskewedScan& scan) {
     newest.points_imu.push_back(state_.T_imu_lidar * p_lidar);
     newest.ranges_m.push_back(p_lidar.norm());
   }
+  KeepOwnPoints(&newest);
+}
+
+bool SlidingWindow::HasEarlierScans() const {
+  for (std::size_t k = 0; k + 1 < window_.size(); ++k) {
+    if (window_[k]->own_points != nullptr) return true;
+  }
+  return false;
 }
 
 std::size_t SlidingWindow::AssociateNewest(const registration::PlaneMatcher& planes) {
@@ -142,6 +151,13 @@ void SlidingWindow::Reweight() {
       const double w = kernel.Weight(m.plane.Distance(R * m.point_imu + p));
       m.sqrt_weight = std::sqrt(w) / lidar_noise_m;
     }
+    for (ScanPairMatches& pair : window_[k]->pairs) {
+      const lie::SE3d T_earlier_map = pair.earlier->blocks.ToNavState(state_).T_map_imu().Inverse();
+      for (PlaneMatch& m : pair.matches) {
+        const double w = kernel.Weight(m.plane.Distance(T_earlier_map * (T_map_imu * m.point_imu)));
+        m.sqrt_weight = std::sqrt(w) / lidar_noise_m;
+      }
+    }
   }
 }
 
@@ -165,7 +181,7 @@ UpdateSummary SlidingWindow::Update(const DeskewedScan& scan,
   }
   WindowState& newest = *window_.back();
   summary.standstill = newest.at_rest;
-  if (planes.map().Size() == 0) {
+  if (planes.map().Size() == 0 && !(scans_extend_map_ && HasEarlierScans())) {
     summary.message = "map is empty: prediction only";
   } else {
     Correct(scan, planes, &summary);
@@ -185,19 +201,36 @@ void SlidingWindow::Correct(const DeskewedScan& scan, const registration::PlaneM
   WindowState& newest = *window_.back();
   const StateBlocks predicted = newest.blocks;
   const NavState predicted_state = StateAt(window_.size() - 1);
-  newest.blocks.FromNavState(UpdateStart(predicted_state, scan, planes,
-                                         [&](const NavState& candidate) {
-                                           newest.blocks.FromNavState(candidate);
-                                           return AssociateNewest(planes);
-                                         },
-                                         summary));
   const SlidingWindowOptions& o = options_.sliding_window;
+  // The map holds finalized scans only. Where the scans extend it, the window's own scans
+  // fill in its gaps at the window's current estimate of their poses: for the wide-basin
+  // start always (it wants the nearest geometry), for the planes of the update unless they
+  // are paired (scan_pairs).
+  std::vector<MapAndWindowSearch::Scan> earlier;
+  for (std::size_t k = 0; scans_extend_map_ && k + 1 < window_.size(); ++k) {
+    if (window_[k]->own_points == nullptr) continue;
+    earlier.push_back({window_[k]->own_points.get(), StateAt(k).T_map_imu()});
+  }
+  const MapAndWindowSearch map_and_window(planes.map(), std::move(earlier));
+  const registration::PlaneMatcher map_and_window_planes(map_and_window, planes.options());
+  const registration::PlaneMatcher& update_planes = o.scan_pairs ? planes : map_and_window_planes;
+  const auto associate = [&] {
+    return AssociateNewest(update_planes) + (o.scan_pairs ? AssociatePairs(planes.options()) : 0);
+  };
+  newest.blocks.FromNavState(UpdateStart(
+      predicted_state, scan, map_and_window_planes,
+      [&](const NavState& candidate) {
+        newest.blocks.FromNavState(candidate);
+        return associate();
+      },
+      summary));
   const int min_matches = options_.lidar_update.min_matches;
   for (int round = 0; round < o.association_rounds; ++round) {
-    summary->num_matches = AssociateNewest(planes);
+    summary->num_matches = associate();
     if (static_cast<int>(summary->num_matches) < min_matches) {
       summary->message = TooFewMatchesMessage(summary->num_matches, min_matches);
       newest.matches.clear();
+      newest.pairs.clear();
       newest.blocks = predicted;
       summary->applied = false;
       return;
@@ -229,9 +262,24 @@ void SlidingWindow::FinishUpdate(UpdateSummary* summary) {
   LidarFit fit(newest.points_imu.size());
   const lie::SE3d T_map_imu = state_.T_map_imu();
   const lie::SO3d R_imu_map = state_.R_map_imu.Inverse();
+  std::vector<char> in_fit(newest.points_imu.size(), 0);
   for (const PlaneMatch& m : newest.matches) {
     fit.Add(m.point_index, m.point_imu, R_imu_map * m.plane.normal,
             m.plane.Distance(T_map_imu * m.point_imu), true);
+    in_fit[m.point_index] = 1;
+  }
+  // A point without a map plane is judged by its plane in the latest earlier scan (the map
+  // lags the window: it holds finalized scans only).
+  for (auto pair = newest.pairs.rbegin(); pair != newest.pairs.rend(); ++pair) {
+    const NavState earlier = pair->earlier->blocks.ToNavState(state_);
+    const lie::SE3d T_earlier_imu = earlier.T_map_imu().Inverse() * T_map_imu;
+    const lie::SO3d R_imu_earlier = T_earlier_imu.so3().Inverse();
+    for (const PlaneMatch& m : pair->matches) {
+      if (in_fit[m.point_index] != 0) continue;
+      fit.Add(m.point_index, m.point_imu, R_imu_earlier * m.plane.normal,
+              m.plane.Distance(T_earlier_imu * m.point_imu), true);
+      in_fit[m.point_index] = 1;
+    }
   }
   fit.Report(options_.lidar_update, summary);
 }

@@ -137,6 +137,55 @@ bool ScanPlaneFactor::Evaluate(double const* const* parameters, double* residual
   return true;
 }
 
+ScanPairFactor::ScanPairFactor(const std::vector<PlaneMatch>& matches) : matches_(matches) {
+  set_num_residuals(static_cast<int>(matches.size()));
+  mutable_parameter_block_sizes()->assign({4, 3, 4, 3});
+}
+
+bool ScanPairFactor::Evaluate(double const* const* parameters, double* residuals,
+                              double** jacobians) const {
+  const Eigen::Matrix3d R_a = Eigen::Quaterniond(parameters[0]).normalized().toRotationMatrix();
+  const Eigen::Map<const Eigen::Vector3d> p_a(parameters[1]);
+  const Eigen::Matrix3d R_b = Eigen::Quaterniond(parameters[2]).normalized().toRotationMatrix();
+  const Eigen::Map<const Eigen::Vector3d> p_b(parameters[3]);
+  const auto wants = [jacobians](int block) {
+    return jacobians != nullptr && jacobians[block] != nullptr;
+  };
+  const bool any_jacobian = wants(0) || wants(1) || wants(2) || wants(3);
+  const Eigen::Matrix<double, 3, 4> lift_a = 4.0 * RotationPlusJacobian(parameters[0]).transpose();
+  const Eigen::Matrix<double, 3, 4> lift_b = 4.0 * RotationPlusJacobian(parameters[2]).transpose();
+  registration::ParallelFor(matches_.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const PlaneMatch& m = matches_[k];
+      // b's plane in the map: the scan-to-map factor for a, whose plane moves with b.
+      registration::Plane plane_map;
+      plane_map.normal = R_b * m.plane.normal;
+      plane_map.offset = m.plane.offset - plane_map.normal.dot(p_b);
+      const Eigen::Vector3d y_map = R_a * m.point_imu + p_a;
+      residuals[k] = m.sqrt_weight * plane_map.Distance(y_map);
+      if (!any_jacobian) continue;
+      const registration::Vector6 J_a =
+          m.sqrt_weight * registration::PointToPlaneJacobian(R_a, m.point_imu, plane_map);
+      if (wants(0))
+        Eigen::Map<Eigen::RowVector4d>(jacobians[0] + 4 * k) = J_a.head<3>().transpose() * lift_a;
+      if (wants(1))
+        Eigen::Map<Eigen::RowVector3d>(jacobians[1] + 3 * k) = J_a.tail<3>().transpose();
+      // R_b ⊞ δ moves the point seen from b, z = R_bᵀ (y − p_b), by [z]× δ.
+      const Eigen::Vector3d z_b = R_b.transpose() * (y_map - p_b);
+      if (wants(2)) {
+        const Eigen::RowVector3d J_rotation_b =
+            m.sqrt_weight * m.plane.normal.transpose() * lie::SO3d::Hat(z_b);
+        Eigen::Map<Eigen::RowVector4d>(jacobians[2] + 4 * k) = J_rotation_b * lift_b;
+      }
+      if (wants(3)) {
+        Eigen::Map<Eigen::RowVector3d>(jacobians[3] + 3 * k) =
+            -m.sqrt_weight * plane_map.normal.transpose();
+      }
+    }
+  });
+  return true;
+}
+
 bool ZeroVelocityFactor::Evaluate(double const* const* parameters, double* residuals,
                                   double** jacobians) const {
   for (int i = 0; i < 3; ++i) residuals[i] = sqrt_information_ * parameters[0][i];

@@ -66,6 +66,23 @@ class ScanPlaneFactor final : public ceres::CostFunction {
   const std::vector<PlaneMatch>& matches_;
 };
 
+/// Point-to-plane residuals between two scans a and b of the window: a point q of scan a (its
+/// IMU frame) against a plane of scan b's own points (b's IMU frame),
+/// r_k = w_k (nᵀ R_bᵀ (R_a q_k + p_a − p_b) + d). Blocks: rotation_a, position_a, rotation_b,
+/// position_b. The plane moves with b's pose, so the residual constrains the two poses
+/// relative to each other, not a pose against a map.
+class ScanPairFactor final : public ceres::CostFunction {
+ public:
+  /// Keeps a reference to `matches` (point of a, plane of b), which must outlive the factor
+  /// (and not change size).
+  explicit ScanPairFactor(const std::vector<PlaneMatch>& matches);
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override;
+
+ private:
+  const std::vector<PlaneMatch>& matches_;
+};
+
 /// Zero velocity at rest (standstill.h): r = v_map / σ. Block: speed_bias (its first three
 /// entries are the velocity).
 class ZeroVelocityFactor final : public ceres::SizedCostFunction<3, 9> {

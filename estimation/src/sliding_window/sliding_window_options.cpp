@@ -33,6 +33,7 @@ bool SlidingWindowOptions::IsValid(std::string* why) const {
   return CheckAtLeast("window_size", window_size, 2, "", why) &&
          CheckAtLeast("max_iterations", max_iterations, 1, "", why) &&
          CheckAtLeast("association_rounds", association_rounds, 1, "", why) &&
+         CheckAtLeast("pair_points", pair_points, 1, "", why) &&
          CheckPositive("max_solver_time_s", max_solver_time_s, why) &&
          CheckPositive("robust_loss_scale_m", robust_loss_scale_m, why);
 }

@@ -64,6 +64,11 @@ FactorSet BuildFactors(const Window& window, const MarginalPrior* prior, double*
     if (!window[k]->matches.empty()) {
       add(new ScanPlaneFactor(window[k]->matches), {x.rotation, x.position});
     }
+    for (const ScanPairMatches& pair : window[k]->pairs) {
+      if (pair.matches.empty()) continue;
+      StateBlocks& e = pair.earlier->blocks;
+      add(new ScanPairFactor(pair.matches), {x.rotation, x.position, e.rotation, e.position});
+    }
     if (use_imu && window[k]->at_rest) {
       add(new ZeroVelocityFactor(options.standstill.velocity_noise_mps), {x.speed_bias});
     }
@@ -144,6 +149,13 @@ void SlidingWindow::MarginalizeOldest() {
       if (std::any_of(touching.begin(), touching.end(), uses)) order.push_back(b);
     }
     prior_ = std::make_unique<MarginalPrior>(Marginalize(touching, order, num_marginalized));
+  }
+  // The pairs with the oldest scan are in the prior now (they touched its blocks).
+  for (auto& state : window_) {
+    std::vector<ScanPairMatches>& pairs = state->pairs;
+    pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
+                               [oldest](const ScanPairMatches& p) { return p.earlier == oldest; }),
+                pairs.end());
   }
   window_.pop_front();
   window_.front()->imu.reset();  // its factor linked the state just removed

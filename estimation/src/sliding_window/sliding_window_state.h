@@ -7,10 +7,20 @@
 
 #include "hylo/estimation/estimator_options.h"
 #include "hylo/estimation/imu_preintegration.h"
+#include "hylo/mapping/ikd_tree.h"
 #include "marginalization.h"
 #include "sliding_window_factors.h"
 
 namespace hylo::estimation {
+
+struct WindowState;
+
+/// One scan's points matched to planes of an earlier scan of the window (each plane in that
+/// scan's IMU frame: ScanPairFactor).
+struct ScanPairMatches {
+  WindowState* earlier = nullptr;
+  std::vector<PlaneMatch> matches;
+};
 
 struct WindowState {
   int64_t t_ns = 0;
@@ -26,6 +36,11 @@ struct WindowState {
   std::vector<Eigen::Vector3d> points_imu;  ///< the scan, IMU frame at t_ns, m
   std::vector<double> ranges_m;             ///< each point's range from the lidar, m
   std::vector<PlaneMatch> matches;          ///< current plane matches (empty: no lidar factor)
+  /// points_imu, searchable: the later scans of the window search it (null without a scan).
+  std::unique_ptr<mapping::IkdTree> own_points;
+  /// This scan's points against the planes of earlier scans of the window, found while it was
+  /// the newest; a pair goes when its earlier scan leaves the window.
+  std::vector<ScanPairMatches> pairs;
 };
 
 using Window = std::deque<std::unique_ptr<WindowState>>;
@@ -40,8 +55,8 @@ struct FactorSet {
 std::vector<BlockRef> StateBlockRefs(WindowState* state, bool use_imu);
 
 /// Every factor of the window: the prior (if any), IMU factors (using the shared gravity block
-/// `gravity_map`) or constant-velocity factors, zero-velocity factors of states at rest, and
-/// the point-to-plane factors of scans with matches.
+/// `gravity_map`) or constant-velocity factors, zero-velocity factors of states at rest, the
+/// point-to-plane factors of scans with matches, and those between scans (pairs).
 FactorSet BuildFactors(const Window& window, const MarginalPrior* prior, double* gravity_map,
                        const EstimatorOptions& options, bool use_imu);
 

@@ -26,6 +26,7 @@ class BackendBase : public Estimator {
   bool initialized() const final { return initialized_; }
   const NavState& state() const final { return state_; }
   void TakeFinalized(std::vector<NavState>* states) final;
+  void SetScansExtendMap(bool extend) final { scans_extend_map_ = extend; }
 
  protected:
   /// Throws hylo::InternalError naming the field when `options` or `imu` is not valid.
@@ -56,6 +57,7 @@ class BackendBase : public Estimator {
   ConstantVelocity constant_velocity_;  // the motion model without an IMU
   RobustRegistration robust_;           // the wide-basin start, when enabled
   std::vector<NavState> finalized_;     // finalized states not taken yet
+  bool scans_extend_map_ = true;        // SetScansExtendMap
 };
 
 }  // namespace hylo::estimation

@@ -82,6 +82,12 @@ class Estimator {
   /// Nominal state at `t_ns` propagated from the last update with the buffered IMU (held at
   /// the last sample beyond it). For t_ns before the state time, the state itself.
   virtual NavState PredictAt(int64_t t_ns) const = 0;
+  /// Whether the scans registered from now on join the map the updates search (SLAM; hybrid
+  /// mode once started; odometry off a tiled prior), told before each Update; default true.
+  /// A back-end whose scans join the map only once finalized (the smoother) then searches its
+  /// newer scans too where the map has too few points; against a fixed prior it must not: its
+  /// own scans would vouch for its pose in the scan's health.
+  virtual void SetScansExtendMap(bool extend) = 0;
   /// Propagates to scan.t_ns and corrects with point-to-plane residuals from `planes`.
   virtual UpdateSummary Update(const DeskewedScan& scan,
                                const registration::PlaneMatcher& planes) = 0;

@@ -106,6 +106,10 @@ class LocalizationSupervisor {
   /// not, its `health`) may extend the map.
   bool MapUpdateAllowed(int64_t t_ns, bool update_applied, const ScanHealth& health,
                         const estimation::NavState& state);
+  /// Whether a scan ending at `t_ns` would extend the map if it fits (MapUpdateAllowed's
+  /// answer for a good scan, without its side effects): hybrid mode once started, odometry
+  /// off a tiled prior; never while lost.
+  bool ScansExtendMap(int64_t t_ns) const;
   /// Whether the vehicle is on the prior's tiles (a tiled prior; always true otherwise), told
   /// before each scan. Off them there is no prior to localize in: loss and relocalization are
   /// suspended and registered scans extend the run's map (odometry mode) until it comes back;

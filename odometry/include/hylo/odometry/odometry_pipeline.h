@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -163,6 +164,7 @@ class OdometryPipeline {
   void ProcessQueued(std::vector<ScanResult>* results, bool flush);  // Process, on threads_
   bool ProcessScan(MeasurementGroup* group, ScanResult* result);
   void UpdateMap(const estimation::DeskewedScan& scan, ScanResult* result);
+  void CollectFinalized();  // the back-end's finalized states; pending scans into the map
 
   OdometryPipelineOptions options_;
   MeasurementQueue queue_;
@@ -184,6 +186,15 @@ class OdometryPipeline {
   // Scans whose pose the supervisor replaced after their update (a relocalization): the
   // back-end finalizes the state of the update, which the trajectory must not hold.
   std::map<int64_t, estimation::NavState> replaced_;
+  // A scan accepted for the map joins it once the back-end has finalized its state, at that
+  // state: the smoother's map then holds smoothed poses, not the live ones it revises (the
+  // filter finalizes at once, so its scans join as before).
+  struct PendingMapScan {
+    int64_t t_ns = 0;
+    PointCloud points_lidar;
+  };
+  std::deque<PendingMapScan> map_pending_;
+  std::vector<estimation::NavState> finalized_;  // collected, not yet taken
   ScanIntervalClock scan_clock_;  // gaps in the data (localization)
 };
 

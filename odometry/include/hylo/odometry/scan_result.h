@@ -33,6 +33,8 @@ struct ScanResult {
   std::size_t raw_points = 0;  ///< after clean-up
   std::size_t downsampled_points = 0;
   std::size_t map_points = 0;  ///< after the map update
+  /// Accepted for the map: it joins the map at its finalized state (at once with the filter,
+  /// when it leaves the smoother's window).
   bool map_updated = false;
   double deskew_ms = 0.0, update_ms = 0.0, map_ms = 0.0, total_ms = 0.0;  ///< wall time
   double cpu_ms = 0.0;  ///< CPU time of this thread for the whole scan (robust to a busy host)

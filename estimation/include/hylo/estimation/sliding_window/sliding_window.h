@@ -5,19 +5,21 @@
 //     15-row residual includes the bias random walk, or without an IMU a constant-velocity
 //     factor over three consecutive poses;
 //   - point-to-plane factors of every scan in the window against the shared map planes;
+//   - point-to-plane factors between the scans of the window (scan_pairs): a scan's points
+//     against planes of an earlier scan's own points, which move with that scan's pose;
 //   - a Gaussian prior from marginalising the states that left the window (marginalization.h).
 // With an IMU the gravity vector is estimated too (one block shared by the window, as the
 // IESKF's δg); the extrinsic is held at its initial value.
 //
-// Plane association: only the newest scan is associated again between solver rounds. Once a
-// scan has been registered the pipeline inserts its points into the map, so searching the map
-// again for an older scan would find its own points and fit planes through them, which pins
-// the pose instead of measuring it; older scans keep the planes found while they were newest
-// (their residuals still move with their poses).
+// Plane association: only the newest scan is associated again between solver rounds, with
+// the map and with each earlier scan of the window; older scans keep the matches found while
+// they were newest (their residuals still move with their poses, and a pair's with both).
 //
 // A state is final when it leaves the window (marginalised) or when the log ends (Finish):
 // until then each later scan can still correct it, so the finalized trajectory is smoothed
-// while the live state is the window's newest.
+// while the live state is the window's newest. The pipeline adds a scan to the map when its
+// state is finalized, at that state (odometry_pipeline.h): the map holds smoothed poses, and
+// the window's own scans reach each other through the pairs, not through the map.
 
 #include <deque>
 #include <memory>
@@ -59,6 +61,9 @@ class SlidingWindow final : public BackendBase {
                UpdateSummary* summary);
   void Solve(SolveReport* report, double budget_s);  // sliding_window_solve.cpp
   std::size_t AssociateNewest(const registration::PlaneMatcher& planes);
+  void KeepOwnPoints(WindowState* state) const;  // sliding_window_pairs.cpp
+  std::size_t AssociatePairs(const registration::PlaneMatcherOptions& options);
+  bool HasEarlierScans() const;  // an earlier scan of the window to pair the newest with
   void Reweight();
   void FinishUpdate(UpdateSummary* summary);
   void ComputeCovariance();

@@ -35,6 +35,17 @@ struct SlidingWindowOptions {
   /// Marginalise the oldest state into a Gaussian prior (true) or simply drop it (false: only
   /// for comparisons, the window then forgets what the dropped states knew).
   bool marginalize = true;
+  /// Constraints between the scans of the window: points of each new scan matched to planes
+  /// of every earlier scan of the window, fitted in that scan's own frame, so the plane moves
+  /// with the pose of the scan that saw it (ScanPairFactor). Off by default: on the scenario
+  /// matrix they cost twice the CPU and made localization and most SLAM runs worse
+  /// (docs/results.md). Off, the window's scans fill in the map's gaps at their current
+  /// estimates instead (the map holds finalized scans only).
+  bool scan_pairs = false;
+  /// Most points of the new scan matched to each earlier scan (evenly spread over the scan),
+  /// >= 1: each pair costs a neighbour search per point and round, and a window's pairs
+  /// grow with the square of its size.
+  int pair_points = 400;
 
   /// The kernel of robust_loss at robust_loss_scale_m.
   registration::RobustKernel Kernel() const { return {robust_loss, robust_loss_scale_m}; }

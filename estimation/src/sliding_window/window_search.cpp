@@ -1,0 +1,49 @@
+#include "window_search.h"
+
+#include <algorithm>
+
+#include "hylo/lie/isometry.h"
+
+namespace hylo::estimation {
+
+MapAndWindowSearch::MapAndWindowSearch(const registration::NeighborSearch& map,
+                                       std::vector<Scan> scans)
+    : map_(map), scans_(std::move(scans)) {
+  for (const Scan& s : scans_) {
+    const Eigen::Isometry3f T_map_scan = lie::ToIsometry(s.T_map_scan).cast<float>();
+    T_map_scan_.push_back(T_map_scan);
+    T_scan_map_.push_back(T_map_scan.inverse());
+  }
+}
+
+void MapAndWindowSearch::KNearest(const Eigen::Vector3f& query_map, int k, float max_distance,
+                                  std::vector<registration::Neighbor>* neighbors) const {
+  map_.KNearest(query_map, k, max_distance, neighbors);
+  // The map first: where it has the neighbours, the window's scans (whose points are denser
+  // and all from the last second) would crowd them out and turn the update into scan-to-scan
+  // odometry, which drifts (measured on the scenario matrix); they fill in where the map has
+  // too few (the first scans of a run, places seen for the first time).
+  if (neighbors->size() >= static_cast<std::size_t>(k)) return;
+  std::vector<registration::Neighbor> found;
+  for (std::size_t s = 0; s < scans_.size(); ++s) {
+    scans_[s].points->KNearest(T_scan_map_[s] * query_map, k, max_distance, &found);
+    for (registration::Neighbor& n : found) {
+      n.point = T_map_scan_[s] * n.point;  // a rigid motion keeps the distance
+      neighbors->push_back(n);
+    }
+  }
+  const auto nearer = [](const registration::Neighbor& a, const registration::Neighbor& b) {
+    return a.squared_distance < b.squared_distance;
+  };
+  const std::size_t keep = std::min<std::size_t>(neighbors->size(), static_cast<std::size_t>(k));
+  std::partial_sort(neighbors->begin(), neighbors->begin() + keep, neighbors->end(), nearer);
+  neighbors->resize(keep);
+}
+
+std::size_t MapAndWindowSearch::Size() const {
+  std::size_t size = map_.Size();
+  for (const Scan& s : scans_) size += s.points->Size();
+  return size;
+}
+
+}  // namespace hylo::estimation
