@@ -13,7 +13,11 @@ namespace hylo::estimation {
 void SlidingWindow::KeepOwnPoints(WindowState* state) const {
   state->own_points.reset();
   state->pairs.clear();
-  if (state->points_imu.empty()) return;
+  // Searched only by the fill-in (scans extending the map) or the pairs: against a fixed
+  // prior the tree would be built for nothing on every scan.
+  if (state->points_imu.empty() || !(scans_extend_map_ || options_.sliding_window.scan_pairs)) {
+    return;
+  }
   PointCloud points;
   points.reserve(state->points_imu.size());
   for (const Eigen::Vector3d& p : state->points_imu) points.push_back(p.cast<float>());
