@@ -67,8 +67,10 @@ def test_slam_writes_nothing_without_out(watched_slam, cli_map):
 
 def test_slam_releases_the_gil(watched_slam):
     _, _, turns, elapsed, _ = watched_slam
-    # Held for the whole run, the GIL would give this thread no turn until the run ended.
-    assert elapsed > 0.5 and turns >= 20, f"{turns} turns in {elapsed:.1f} s"
+    # Held for the whole run, the GIL would give this thread no turn until the run ended; a
+    # loaded machine stretches each 5 ms sleep, so judge the turns against the run's length
+    # rather than against a fixed count.
+    assert turns >= max(10, 0.25 * elapsed / 0.005), f"{turns} turns in {elapsed:.2f} s"
 
 
 def test_slam_reports_progress_and_stops_when_the_callback_raises(watched_slam, sim):
