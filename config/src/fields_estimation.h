@@ -107,6 +107,16 @@ void VisitFields(V& v, estimation::SlidingWindowOptions& o) {
     "those scans' poses");
   v("pair_points", o.pair_points,
     "most points of a new scan matched to each earlier scan of the window (>= 1)");
+  v("estimate_time_offset", o.estimate_time_offset,
+    "estimate a correction to lidar.time_offset_s with the window (needs the IMU; reported in "
+    "summary.json with its sigma)");
+  v("estimate_extrinsic_rotation", o.estimate_extrinsic_rotation,
+    "estimate a small correction to the rotation of T_imu_lidar with the window (needs the "
+    "IMU; reported in summary.json with its sigma)");
+  v("time_offset_prior_sigma_s", o.time_offset_prior_sigma_s,
+    "prior standard deviation of the time-offset correction, s (> 0)");
+  v("extrinsic_rotation_prior_sigma_rad", o.extrinsic_rotation_prior_sigma_rad,
+    "prior standard deviation of the extrinsic rotation correction per axis, rad (> 0)");
 }
 
 template <class V>

@@ -75,7 +75,21 @@ bool OdometryPipelineOptions::IsValid(std::string* why) const {
          CheckSection(init, "init", why) && CheckSection(preprocess, "preprocess", why) &&
          CheckSection(planes, "planes", why) && CheckSection(map, "map", why) &&
          CheckSection(localization, "localization", why) && CheckSection(output, "output", why) &&
-         CheckAtLeast("threads", threads, 0, "(0 = every core, 1 = the calling thread alone)", why);
+         CheckAtLeast("threads", threads, 0, "(0 = every core, 1 = the calling thread alone)",
+                      why) &&
+         CheckCalibrationHasImu(why);
+}
+
+bool OdometryPipelineOptions::CheckCalibrationHasImu(std::string* why) const {
+  // The time offset and the extrinsic rotation are seen only against the IMU's motion.
+  const estimation::SlidingWindowOptions& window = estimator.sliding_window;
+  if (imu.enabled || estimator.backend != estimation::Estimator::Backend::kSlidingWindow ||
+      !window.EstimatesCalibration()) {
+    return true;
+  }
+  return FailOption(window.estimate_time_offset ? "sliding_window.estimate_time_offset"
+                                                : "sliding_window.estimate_extrinsic_rotation",
+                    "true", "needs the IMU (imu: none leaves nothing to calibrate against)", why);
 }
 
 OdometryPipeline::OdometryPipeline(const OdometryPipelineOptions& options)

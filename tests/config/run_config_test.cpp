@@ -110,6 +110,16 @@ TEST(RunConfig, InvalidValueNamesFieldValueAndConstraint) {
                     {"prior_map", "tile_load_radius_m = -5", ">= 0"});
   ExpectConfigError("prior_map:\n  tile_cache_million_points: 0\n",
                     {"prior_map", "tile_cache_million_points", "> 0"});
+  ExpectConfigError("sliding_window:\n  time_offset_prior_sigma_s: 0\n",
+                    {"sliding_window.time_offset_prior_sigma_s", "> 0"});
+}
+
+TEST(RunConfig, OnlineCalibrationNeedsTheImuAndNoScanPairs) {
+  ExpectConfigError(
+      "backend: sliding_window\nimu: none\nsliding_window:\n  estimate_time_offset: true\n",
+      {"sliding_window.estimate_time_offset", "needs the IMU"});
+  ExpectConfigError("sliding_window:\n  scan_pairs: true\n  estimate_extrinsic_rotation: true\n",
+                    {"sliding_window.estimate_time_offset", "scan_pairs: false"});
 }
 
 // yaml-cpp keeps both entries of a repeated key and a lookup finds one: the file would say two

@@ -1,5 +1,6 @@
 // The smoother's Ceres pieces: the SO3 manifold's invariants (Ceres' own checks), every
-// analytic factor Jacobian against Ceres' numeric differences through the manifold, and the
+// analytic factor Jacobian against Ceres' numeric differences through the manifold (the online
+// calibration's for each set of its blocks), residuals worked out by hand, and the
 // Schur-complement marginalisation against the marginal of a known Gaussian.
 #include "sliding_window_factors.h"
 
@@ -10,6 +11,7 @@
 
 #include <random>
 
+#include "calibration_factors.h"
 #include "hylo/estimation/sliding_window/so3_manifold.h"
 #include "marginalization.h"
 
@@ -64,7 +66,8 @@ void ExpectJacobiansCorrect(const ceres::CostFunction& cost,
     const ceres::Matrix& analytic = results.local_jacobians[b];
     const ceres::Matrix& numeric = results.local_numeric_jacobians[b];
     EXPECT_LE((analytic - numeric).norm(), precision * std::max(1.0, numeric.norm()))
-        << "block " << b << "\n" << analytic - numeric;
+        << "block " << b << "\n"
+        << analytic - numeric;
   }
 }
 
@@ -94,10 +97,10 @@ TEST(SlidingWindowFactors, ImuFactorJacobians) {
   b.FromNavState(xj);
   const SO3Manifold so3;
   // Whitened by very small IMU noise the residuals are large numbers: relative precision.
-  ExpectJacobiansCorrect(factor, {&so3, nullptr, nullptr, &so3, nullptr, nullptr, nullptr},
-                         {a.rotation, a.position, a.speed_bias, b.rotation, b.position,
-                          b.speed_bias, gravity.data()},
-                         1e-6);
+  ExpectJacobiansCorrect(
+      factor, {&so3, nullptr, nullptr, &so3, nullptr, nullptr, nullptr},
+      {a.rotation, a.position, a.speed_bias, b.rotation, b.position, b.speed_bias, gravity.data()},
+      1e-6);
 }
 
 TEST(SlidingWindowFactors, ScanPlaneFactorJacobians) {
@@ -156,6 +159,123 @@ TEST(SlidingWindowFactors, ScanPairResidualIsThePointsDistanceToThePlaneSeenFrom
   EXPECT_NEAR(residual, 0.1, 1e-12);
 }
 
+std::vector<PlaneMatch> RandomMatches(std::mt19937* rng, int count) {
+  std::vector<PlaneMatch> matches(count);
+  for (PlaneMatch& m : matches) {
+    m.point_imu = RandomVector(rng, 10.0);
+    m.plane.normal = RandomVector(rng, 1.0).normalized();
+    m.plane.offset = RandomVector(rng, 1.0).x();
+    m.sqrt_weight = 50.0;
+  }
+  return matches;
+}
+
+TEST(CalibrationFactors, JacobiansForEveryLayout) {
+  std::mt19937 rng(7);
+  const std::vector<PlaneMatch> matches = RandomMatches(&rng, 30);
+  const Eigen::Vector3d rate = RandomVector(&rng, 0.5);
+  const Eigen::Vector3d lever_arm = RandomVector(&rng, 0.3);
+  const SO3Manifold so3;
+  for (const CalibrationLayout layout :
+       {CalibrationLayout{true, false}, CalibrationLayout{false, true},
+        CalibrationLayout{true, true}, CalibrationLayout{}}) {
+    SCOPED_TRACE(::testing::Message()
+                 << "time " << layout.time_offset << ", rotation " << layout.extrinsic_rotation);
+    const CalibratedScanPlaneFactor factor(matches, layout, rate, lever_arm);
+    Eigen::Vector4d q = Quaternion(RandomVector(&rng, 1.0));
+    Eigen::Vector3d p = RandomVector(&rng, 5.0);
+    Eigen::Matrix<double, 9, 1> speed_bias;
+    speed_bias << RandomVector(&rng, 2.0), RandomVector(&rng, 0.01), RandomVector(&rng, 0.1);
+    double time_offset = 0.015;
+    Eigen::Vector4d extrinsic = Quaternion(RandomVector(&rng, 0.02));
+    std::vector<const ceres::Manifold*> manifolds{&so3, nullptr, nullptr};
+    std::vector<double*> blocks{q.data(), p.data(), speed_bias.data()};
+    if (layout.time_offset) {
+      manifolds.push_back(nullptr);
+      blocks.push_back(&time_offset);
+    }
+    if (layout.extrinsic_rotation) {
+      manifolds.push_back(&so3);
+      blocks.push_back(extrinsic.data());
+    }
+    ExpectJacobiansCorrect(factor, manifolds, blocks, 1e-7);
+  }
+}
+
+TEST(CalibrationFactors, NoCorrectionIsThePlainScanToMapFactor) {
+  std::mt19937 rng(8);
+  const std::vector<PlaneMatch> matches = RandomMatches(&rng, 20);
+  const CalibratedScanPlaneFactor calibrated(matches, {true, true}, RandomVector(&rng, 0.5),
+                                             RandomVector(&rng, 0.3));
+  const ScanPlaneFactor plain(matches);
+  const Eigen::Vector4d q = Quaternion(RandomVector(&rng, 1.0));
+  const Eigen::Vector3d p = RandomVector(&rng, 5.0);
+  Eigen::Matrix<double, 9, 1> speed_bias;
+  speed_bias << RandomVector(&rng, 2.0), Eigen::Matrix<double, 6, 1>::Zero();
+  const double time_offset = 0.0;
+  const Eigen::Vector4d identity(0.0, 0.0, 0.0, 1.0);
+  const double* calibrated_blocks[] = {q.data(), p.data(), speed_bias.data(), &time_offset,
+                                       identity.data()};
+  const double* plain_blocks[] = {q.data(), p.data()};
+  std::vector<double> a(matches.size()), b(matches.size());
+  ASSERT_TRUE(calibrated.Evaluate(calibrated_blocks, a.data(), nullptr));
+  ASSERT_TRUE(plain.Evaluate(plain_blocks, b.data(), nullptr));
+  for (std::size_t k = 0; k < a.size(); ++k) EXPECT_NEAR(a[k], b[k], 1e-12) << k;
+}
+
+TEST(CalibrationFactors, ResidualsWorkedOutByHand) {
+  // A level vehicle at the origin driving 1 m/s along x while turning 0.25 rad/s left. A point
+  // 5 m ahead, on the wall x = 5, taken 20 ms later than its stamp says: by then the vehicle
+  // had gone 2 cm and turned 5 mrad, so the point is at 5 cos(0.005) + 0.02 along x.
+  std::vector<PlaneMatch> wall(1);
+  wall[0].point_imu = Eigen::Vector3d(5.0, 0.0, 0.0);
+  wall[0].plane.normal = Eigen::Vector3d::UnitX();
+  wall[0].plane.offset = -5.0;
+  const Eigen::Vector4d level = Quaternion(Eigen::Vector3d::Zero());
+  const Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  Eigen::Matrix<double, 9, 1> speed_bias = Eigen::Matrix<double, 9, 1>::Zero();
+  speed_bias(0) = 1.0;
+  const double time_offset = 0.02;
+  const CalibratedScanPlaneFactor timed(wall, {true, false}, Eigen::Vector3d(0, 0, 0.25),
+                                        Eigen::Vector3d::Zero());
+  const double* timed_blocks[] = {level.data(), origin.data(), speed_bias.data(), &time_offset};
+  double residual = 0.0;
+  ASSERT_TRUE(timed.Evaluate(timed_blocks, &residual, nullptr));
+  EXPECT_NEAR(residual, 0.02 - 5.0 * (1.0 - std::cos(0.005)), 1e-12);
+
+  // Standing still, a lidar 1 m left of the IMU turned 0.01 rad further left than configured:
+  // a point 5 m ahead of the lidar is 5 sin(0.01) further left, on the plane y = 1.
+  std::vector<PlaneMatch> side(1);
+  side[0].point_imu = Eigen::Vector3d(5.0, 1.0, 0.0);
+  side[0].plane.normal = Eigen::Vector3d::UnitY();
+  side[0].plane.offset = -1.0;
+  const CalibratedScanPlaneFactor turned(side, {false, true}, Eigen::Vector3d::Zero(),
+                                         Eigen::Vector3d(0.0, 1.0, 0.0));
+  const Eigen::Vector4d Q = Quaternion(Eigen::Vector3d(0.0, 0.0, 0.01));
+  speed_bias.setZero();
+  const double* turned_blocks[] = {level.data(), origin.data(), speed_bias.data(), Q.data()};
+  ASSERT_TRUE(turned.Evaluate(turned_blocks, &residual, nullptr));
+  EXPECT_NEAR(residual, 5.0 * std::sin(0.01), 1e-12);
+}
+
+TEST(CalibrationFactors, PriorsAreWhitenedDistancesFromTheirCentres) {
+  const std::unique_ptr<ceres::CostFunction> time(MakeTimeOffsetPriorFactor(0.01, 0.002));
+  const double offset = 0.014;
+  const double* time_blocks[] = {&offset};
+  double r = 0.0;
+  ASSERT_TRUE(time->Evaluate(time_blocks, &r, nullptr));
+  EXPECT_NEAR(r, 2.0, 1e-12);
+
+  const Eigen::Vector4d centre = Quaternion(Eigen::Vector3d(0.0, 0.0, 0.02));
+  const std::unique_ptr<ceres::CostFunction> rotation(
+      MakeRotationPriorFactor(centre.data(), 0.005));
+  const Eigen::Vector4d Q = Quaternion(Eigen::Vector3d(0.0, 0.0, 0.03));
+  const double* rotation_blocks[] = {Q.data()};
+  Eigen::Vector3d residual;
+  ASSERT_TRUE(rotation->Evaluate(rotation_blocks, residual.data(), nullptr));
+  EXPECT_LT((residual - Eigen::Vector3d(0.0, 0.0, 2.0)).norm(), 1e-9);
+}
+
 TEST(SlidingWindowFactors, ConstantVelocityFactorJacobians) {
   std::mt19937 rng(5);
   std::unique_ptr<ceres::CostFunction> factor(MakeConstantVelocityFactor(0.1, 0.12, 1.0, 0.5));
@@ -201,9 +321,8 @@ TEST(Marginalization, SchurComplementIsTheMarginalOfAGaussian) {
   for (int i = 0; i < 12; ++i) g(i) = n(rng);
   const MarginalPrior joint = PriorFromInformation(order, H, g);
   const MarginalPriorFactor joint_factor(joint);
-  const MarginalPrior marginal = Marginalize({{&joint_factor, {q0.data(), p0.data(), q1.data(),
-                                                                p1.data()}}},
-                                            order, 2);
+  const MarginalPrior marginal =
+      Marginalize({{&joint_factor, {q0.data(), p0.data(), q1.data(), p1.data()}}}, order, 2);
   const Eigen::MatrixXd expected = H.inverse().bottomRightCorner(6, 6).inverse();
   const Eigen::MatrixXd got = marginal.J.transpose() * marginal.J;
   EXPECT_LT((got - expected).norm(), 1e-9 * expected.norm());
@@ -213,8 +332,8 @@ TEST(Marginalization, SchurComplementIsTheMarginalOfAGaussian) {
 
   const MarginalPriorFactor factor(marginal);
   const SO3Manifold so3;
-  Eigen::Vector4d q_moved = Quaternion(lie::SO3d(Eigen::Quaterniond(q1.data())).Log() +
-                                       RandomVector(&rng, 0.3));
+  Eigen::Vector4d q_moved =
+      Quaternion(lie::SO3d(Eigen::Quaterniond(q1.data())).Log() + RandomVector(&rng, 0.3));
   Eigen::Vector3d p_moved = p1 + RandomVector(&rng, 0.5);
   ExpectJacobiansCorrect(factor, {&so3, nullptr}, {q_moved.data(), p_moved.data()}, 1e-7);
 }

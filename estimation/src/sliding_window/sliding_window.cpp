@@ -17,13 +17,33 @@ namespace hylo::estimation {
 using namespace state_index;  // NOLINT: index names only
 
 SlidingWindow::SlidingWindow(const EstimatorOptions& options, const ImuOptions& imu)
-    : BackendBase(options, imu) {}
+    : BackendBase(options, imu) {
+  const SlidingWindowOptions& o = options.sliding_window;
+  if (!o.EstimatesCalibration()) return;
+  if (!imu.enabled) {
+    throw InternalError(
+        "sliding_window.estimate_time_offset/estimate_extrinsic_rotation: "
+        "online calibration needs the IMU");
+  }
+  calibration_ = std::make_unique<WindowCalibration>();
+  calibration_->layout = {o.estimate_time_offset, o.estimate_extrinsic_rotation};
+  calibration_->time_offset_sigma_s = o.time_offset_prior_sigma_s;
+  calibration_->extrinsic_rotation_sigma_rad = o.extrinsic_rotation_prior_sigma_rad;
+}
 
 SlidingWindow::~SlidingWindow() = default;
 
 void SlidingWindow::Initialize(const NavState& state, const StateCovariance& covariance) {
   FinalizeWindow();  // a restart (relocalization) ends what the window knew
   Restart(state);
+  if (calibration_ != nullptr && !calibration_started_) {
+    calibration_->T_imu_lidar_configured = state.T_imu_lidar;  // the configuration's
+    calibration_started_ = true;
+  } else if (calibration_ != nullptr) {
+    // What the marginal prior knew of the calibration goes with the window; the estimate
+    // stays, held by the configured prior's width around it.
+    calibration_->RecentrePriors();
+  }
   initial_covariance_ = 0.5 * (covariance + covariance.transpose());
   covariance_ = initial_covariance_;
   window_.clear();
@@ -61,7 +81,38 @@ NavState SlidingWindow::StateAt(std::size_t index) const {
   NavState x = window_[index]->blocks.ToNavState(state_);
   x.t_ns = window_[index]->t_ns;
   if (imu_options_.enabled) x.gravity_map = Eigen::Map<const Eigen::Vector3d>(gravity_map_);
+  if (calibration_ != nullptr) x.T_imu_lidar = calibration_->T_imu_lidar();
   return x;
+}
+
+lie::SE3d SlidingWindow::ObservationPose(std::size_t index) const {
+  const NavState x = StateAt(index);
+  if (calibration_ == nullptr) return x.T_map_imu();
+  return calibration_->ObservationPose(x, window_[index]->rate_imu);
+}
+
+std::vector<BlockRef> SlidingWindow::CalibrationBlocks() {
+  if (calibration_ == nullptr) return {};
+  return calibration_->Blocks();
+}
+
+OnlineCalibration SlidingWindow::Calibration() const {
+  OnlineCalibration c;
+  if (calibration_ == nullptr) return c;
+  const Eigen::VectorXd sigma = calibration_covariance_.diagonal().cwiseMax(0.0).cwiseSqrt();
+  int next = 0;
+  if (calibration_->layout.time_offset) {
+    c.time_offset_estimated = true;
+    c.time_offset_correction_s = calibration_->time_offset_s[0];
+    if (sigma.size() > next) c.time_offset_sigma_s = sigma(next);
+    next += 1;
+  }
+  if (calibration_->layout.extrinsic_rotation) {
+    c.extrinsic_rotation_estimated = true;
+    c.extrinsic_rotation_correction_rad = calibration_->RotationCorrection().Log();
+    if (sigma.size() >= next + 3) c.extrinsic_rotation_sigma_rad = sigma.segment<3>(next);
+  }
+  return c;
 }
 
 std::vector<double*> SlidingWindow::GlobalBlocks() {
@@ -79,7 +130,10 @@ void SlidingWindow::AppendState(const DeskewedScan& scan) {
         std::make_unique<ImuPreintegration>(last.gyro_bias, last.accel_bias, imu_options_.noise);
     for (const ImuInterval& in : imu_.Intervals(last.t_ns, scan.t_ns)) {
       next->imu->Integrate(in);
+      next->turned_before_imu += in.gyro_imu * in.dt_s;
+      next->span_before_s += in.dt_s;
     }
+    SetRates(last, next.get());
     predicted = next->imu->Predict(last, last.gravity_map);
   }
   next->blocks.FromNavState(predicted);
@@ -92,6 +146,21 @@ void SlidingWindow::AppendState(const DeskewedScan& scan) {
   }
 }
 
+void SlidingWindow::SetRates(const NavState& last, WindowState* next) {
+  // Mean rates, not a sample's: a sample carries the vibration, which would bias a clock
+  // offset estimated from it toward zero. The newest state has the mean since the state
+  // before it; that state, now between two intervals, the mean over both (centred on it).
+  if (next->span_before_s > 0.0) {
+    next->rate_imu = next->turned_before_imu / next->span_before_s - last.gyro_bias;
+  }
+  WindowState& previous = *window_.back();
+  const double span_s = previous.span_before_s + next->span_before_s;
+  if (previous.span_before_s > 0.0 && span_s > 0.0) {
+    previous.rate_imu =
+        (previous.turned_before_imu + next->turned_before_imu) / span_s - last.gyro_bias;
+  }
+}
+
 void SlidingWindow::SetNewestScan(const DeskewedScan& scan) {
   WindowState& newest = *window_.back();
   newest.holds_scan = true;
@@ -99,9 +168,12 @@ void SlidingWindow::SetNewestScan(const DeskewedScan& scan) {
   newest.ranges_m.clear();
   newest.matches.clear();
   newest.points_imu.reserve(scan.points_lidar.size());
+  // With online calibration the points keep the configured extrinsic: the factors correct it.
+  const lie::SE3d T_imu_lidar =
+      calibration_ != nullptr ? calibration_->T_imu_lidar_configured : state_.T_imu_lidar;
   for (const Eigen::Vector3f& p : scan.points_lidar) {
     const Eigen::Vector3d p_lidar = p.cast<double>();
-    newest.points_imu.push_back(state_.T_imu_lidar * p_lidar);
+    newest.points_imu.push_back(T_imu_lidar * p_lidar);
     newest.ranges_m.push_back(p_lidar.norm());
   }
   KeepOwnPoints(&newest);
@@ -116,7 +188,7 @@ bool SlidingWindow::HasEarlierScans() const {
 
 std::size_t SlidingWindow::AssociateNewest(const registration::PlaneMatcher& planes) {
   WindowState& newest = *window_.back();
-  const lie::SE3d T_map_imu = StateAt(window_.size() - 1).T_map_imu();
+  const lie::SE3d T_map_imu = ObservationPose(window_.size() - 1);
   newest.matches.clear();
   const std::size_t n = newest.points_imu.size();
   // Each point's plane on its own slot, then the matches in point order: the same whatever
@@ -144,7 +216,7 @@ void SlidingWindow::Reweight() {
   const registration::RobustKernel kernel = options_.sliding_window.Kernel();
   const double lidar_noise_m = options_.lidar_update.lidar_noise_m;
   for (std::size_t k = 0; k < window_.size(); ++k) {
-    const lie::SE3d T_map_imu = StateAt(k).T_map_imu();
+    const lie::SE3d T_map_imu = ObservationPose(k);
     const Eigen::Matrix3d R = T_map_imu.so3().Matrix();
     const Eigen::Vector3d p = T_map_imu.translation();
     for (PlaneMatch& m : window_[k]->matches) {
@@ -209,7 +281,7 @@ void SlidingWindow::Correct(const DeskewedScan& scan, const registration::PlaneM
   std::vector<MapAndWindowSearch::Scan> earlier;
   for (std::size_t k = 0; scans_extend_map_ && k + 1 < window_.size(); ++k) {
     if (window_[k]->own_points == nullptr) continue;
-    earlier.push_back({window_[k]->own_points.get(), StateAt(k).T_map_imu()});
+    earlier.push_back({window_[k]->own_points.get(), ObservationPose(k)});
   }
   const MapAndWindowSearch map_and_window(planes.map(), std::move(earlier));
   const registration::PlaneMatcher map_and_window_planes(map_and_window, planes.options());
@@ -260,8 +332,8 @@ void SlidingWindow::FinishUpdate(UpdateSummary* summary) {
   // Residuals, fit and degeneracy from the newest scan's matches at the final estimate.
   const WindowState& newest = *window_.back();
   LidarFit fit(newest.points_imu.size());
-  const lie::SE3d T_map_imu = state_.T_map_imu();
-  const lie::SO3d R_imu_map = state_.R_map_imu.Inverse();
+  const lie::SE3d T_map_imu = ObservationPose(window_.size() - 1);
+  const lie::SO3d R_imu_map = T_map_imu.so3().Inverse();
   std::vector<char> in_fit(newest.points_imu.size(), 0);
   for (const PlaneMatch& m : newest.matches) {
     fit.Add(m.point_index, m.point_imu, R_imu_map * m.plane.normal,

@@ -35,7 +35,20 @@ bool SlidingWindowOptions::IsValid(std::string* why) const {
          CheckAtLeast("association_rounds", association_rounds, 1, "", why) &&
          CheckAtLeast("pair_points", pair_points, 1, "", why) &&
          CheckPositive("max_solver_time_s", max_solver_time_s, why) &&
-         CheckPositive("robust_loss_scale_m", robust_loss_scale_m, why);
+         CheckPositive("robust_loss_scale_m", robust_loss_scale_m, why) &&
+         CheckPositive("time_offset_prior_sigma_s", time_offset_prior_sigma_s, why) &&
+         CheckPositive("extrinsic_rotation_prior_sigma_rad", extrinsic_rotation_prior_sigma_rad,
+                       why) &&
+         CheckCalibrationWithoutPairs(why);
+}
+
+bool SlidingWindowOptions::CheckCalibrationWithoutPairs(std::string* why) const {
+  // A pair's residual would need the calibration at both of its scans' times; not modelled.
+  if (!EstimatesCalibration() || !scan_pairs) return true;
+  if (why != nullptr) {
+    *why = "estimate_time_offset and estimate_extrinsic_rotation need scan_pairs: false";
+  }
+  return false;
 }
 
 }  // namespace hylo::estimation

@@ -47,7 +47,8 @@ bool Touches(const FactorRef& factor, const std::vector<BlockRef>& blocks) {
 }
 
 FactorSet BuildFactors(const Window& window, const MarginalPrior* prior, double* gravity_map,
-                       const EstimatorOptions& options, bool use_imu) {
+                       WindowCalibration* calibration, const EstimatorOptions& options,
+                       bool use_imu) {
   FactorSet set;
   const auto add = [&set](ceres::CostFunction* cost, std::vector<double*> blocks) {
     set.owned.emplace_back(cost);
@@ -58,10 +59,30 @@ FactorSet BuildFactors(const Window& window, const MarginalPrior* prior, double*
     for (const BlockRef& b : prior->blocks) blocks.push_back(b.values);
     add(new MarginalPriorFactor(*prior), blocks);
   }
+  std::vector<double*> calibration_blocks;
+  if (calibration != nullptr) {
+    WindowCalibration& c = *calibration;
+    if (c.layout.time_offset) {
+      add(MakeTimeOffsetPriorFactor(c.time_offset_prior_s, c.time_offset_sigma_s),
+          {c.time_offset_s});
+    }
+    if (c.layout.extrinsic_rotation) {
+      add(MakeRotationPriorFactor(c.extrinsic_rotation_prior, c.extrinsic_rotation_sigma_rad),
+          {c.extrinsic_rotation});
+    }
+    for (const BlockRef& b : c.Blocks()) calibration_blocks.push_back(b.values);
+  }
   const NoImuOptions& o = options.no_imu;
   for (std::size_t k = 0; k < window.size(); ++k) {
     StateBlocks& x = window[k]->blocks;
-    if (!window[k]->matches.empty()) {
+    if (!window[k]->matches.empty() && calibration != nullptr) {
+      std::vector<double*> blocks{x.rotation, x.position, x.speed_bias};
+      blocks.insert(blocks.end(), calibration_blocks.begin(), calibration_blocks.end());
+      add(new CalibratedScanPlaneFactor(window[k]->matches, calibration->layout,
+                                        window[k]->rate_imu,
+                                        calibration->T_imu_lidar_configured.translation()),
+          std::move(blocks));
+    } else if (!window[k]->matches.empty()) {
       add(new ScanPlaneFactor(window[k]->matches), {x.rotation, x.position});
     }
     for (const ScanPairMatches& pair : window[k]->pairs) {
@@ -89,8 +110,8 @@ FactorSet BuildFactors(const Window& window, const MarginalPrior* prior, double*
 }
 
 void SlidingWindow::Solve(SolveReport* report, double budget_s) {
-  const FactorSet factors =
-      BuildFactors(window_, prior_.get(), gravity_map_, options_, imu_options_.enabled);
+  const FactorSet factors = BuildFactors(window_, prior_.get(), gravity_map_, calibration_.get(),
+                                         options_, imu_options_.enabled);
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -102,6 +123,14 @@ void SlidingWindow::Solve(SolveReport* report, double budget_s) {
     }
   }
   for (double* g : GlobalBlocks()) problem.AddParameterBlock(g, 3);
+  // At rest neither a clock offset nor the extrinsic moves a scan's points relative to the
+  // IMU's motion: the calibration would wander on noise. It waits for the vehicle to move.
+  const bool window_at_rest =
+      std::all_of(window_.begin() + 1, window_.end(), [](const auto& s) { return s->at_rest; });
+  for (const BlockRef& b : CalibrationBlocks()) {
+    problem.AddParameterBlock(b.values, b.ambient_size, b.rotation ? &manifold : nullptr);
+    if (window_at_rest) problem.SetParameterBlockConstant(b.values);
+  }
   for (const FactorRef& f : factors.refs) {
     problem.AddResidualBlock(const_cast<ceres::CostFunction*>(f.cost), nullptr, f.blocks);
   }
@@ -128,8 +157,8 @@ void SlidingWindow::MarginalizeOldest() {
   if (!options_.sliding_window.marginalize) {
     prior_.reset();  // what the oldest state knew is forgotten with it
   } else {
-    const FactorSet all =
-        BuildFactors(window_, prior_.get(), gravity_map_, options_, imu_options_.enabled);
+    const FactorSet all = BuildFactors(window_, prior_.get(), gravity_map_, calibration_.get(),
+                                       options_, imu_options_.enabled);
     std::vector<BlockRef> order = StateBlockRefs(oldest, imu_options_.enabled);
     const int num_marginalized = static_cast<int>(order.size());
     std::vector<FactorRef> touching;
@@ -144,6 +173,7 @@ void SlidingWindow::MarginalizeOldest() {
       }
     }
     for (double* g : GlobalBlocks()) candidates.push_back({g, 3, false});
+    for (const BlockRef& b : CalibrationBlocks()) candidates.push_back(b);
     for (const BlockRef& b : candidates) {
       const auto uses = [&b](const FactorRef& f) { return Touches(f, {b}); };
       if (std::any_of(touching.begin(), touching.end(), uses)) order.push_back(b);
@@ -165,9 +195,12 @@ void SlidingWindow::ComputeCovariance() {
   // Marginal covariance of the newest state: the newest block columns of H⁻¹, where H is the
   // Gauss-Newton information of the whole window at the estimate (the marginal prior holds
   // what the removed states knew).
-  const FactorSet all =
-      BuildFactors(window_, prior_.get(), gravity_map_, options_, imu_options_.enabled);
-  std::vector<BlockRef> order;
+  const FactorSet all = BuildFactors(window_, prior_.get(), gravity_map_, calibration_.get(),
+                                     options_, imu_options_.enabled);
+  // The calibration's blocks first, so that the newest state and gravity stay the last columns.
+  std::vector<BlockRef> order = CalibrationBlocks();
+  std::vector<int> offsets;
+  const int calibration_dim = TangentOffsets(order, &offsets);
   for (const auto& s : window_) {
     for (const BlockRef& b : StateBlockRefs(s.get(), imu_options_.enabled)) order.push_back(b);
   }
@@ -180,8 +213,12 @@ void SlidingWindow::ComputeCovariance() {
   const int dim = imu_options_.enabled ? kImuFactorDim + 3 : 6;
   // A tiny ridge keeps unobserved directions (e.g. no lidar yet) finite instead of NaN.
   H.diagonal().array() += 1e-9;
-  const Eigen::MatrixXd columns = H.ldlt().solve(Eigen::MatrixXd::Identity(n, n).rightCols(dim));
-  const Eigen::MatrixXd P = columns.bottomRows(dim);
+  Eigen::MatrixXd wanted = Eigen::MatrixXd::Zero(n, calibration_dim + dim);
+  wanted.leftCols(calibration_dim) = Eigen::MatrixXd::Identity(n, n).leftCols(calibration_dim);
+  wanted.rightCols(dim) = Eigen::MatrixXd::Identity(n, n).rightCols(dim);
+  const Eigen::MatrixXd columns = H.ldlt().solve(wanted);
+  const Eigen::MatrixXd P = columns.bottomRightCorner(dim, dim);
+  calibration_covariance_ = columns.topLeftCorner(calibration_dim, calibration_dim);
   covariance_ = initial_covariance_;
   covariance_.topRows(dim).setZero();
   covariance_.leftCols(dim).setZero();

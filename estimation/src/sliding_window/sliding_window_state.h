@@ -5,8 +5,10 @@
 #include <memory>
 #include <vector>
 
+#include "calibration_factors.h"
 #include "hylo/estimation/estimator_options.h"
 #include "hylo/estimation/imu_preintegration.h"
+#include "hylo/lie/se3.h"
 #include "hylo/mapping/ikd_tree.h"
 #include "marginalization.h"
 #include "sliding_window_factors.h"
@@ -28,6 +30,11 @@ struct WindowState {
   /// none: it is not a scan's pose).
   bool holds_scan = false;
   StateBlocks blocks;
+  /// The body rate less the gyro bias about t_ns (a mean over the IMU intervals next to it,
+  /// SlidingWindow::SetRates), rad/s, IMU frame: how the pose moves over a clock offset.
+  Eigen::Vector3d rate_imu = Eigen::Vector3d::Zero();
+  Eigen::Vector3d turned_before_imu = Eigen::Vector3d::Zero();  ///< ∫ gyro dt since the last state
+  double span_before_s = 0.0;                                   ///< ... over this long, s
   /// The IMU showed rest since the previous state: a zero-velocity factor holds it.
   bool at_rest = false;
   /// Preintegrated IMU from the previous window state to this one (null for the first state
@@ -45,6 +52,31 @@ struct WindowState {
 
 using Window = std::deque<std::unique_ptr<WindowState>>;
 
+/// The online calibration's blocks, shared by every scan of the window (calibration_factors.h),
+/// and their priors: Gaussian, centred on the configured values (corrections of zero) until a
+/// restart of the window, which centres them on the estimate it had reached.
+struct WindowCalibration {
+  CalibrationLayout layout;
+  double time_offset_s[1] = {0.0};                      ///< δt, s
+  double extrinsic_rotation[4] = {0.0, 0.0, 0.0, 1.0};  ///< Q (x y z w)
+  lie::SE3d T_imu_lidar_configured;
+  double time_offset_prior_s = 0.0;
+  double extrinsic_rotation_prior[4] = {0.0, 0.0, 0.0, 1.0};
+  double time_offset_sigma_s = 0.05;
+  double extrinsic_rotation_sigma_rad = 0.035;
+
+  /// The estimated blocks in layout order (time offset, then rotation).
+  std::vector<BlockRef> Blocks();
+  lie::SO3d RotationCorrection() const;
+  /// The extrinsic with the estimated rotation: (Q R_il, t_il).
+  lie::SE3d T_imu_lidar() const;
+  /// Where the points of the state `x` (IMU frame by the configured extrinsic) lie in the
+  /// map: the state moved on by δt at `rate_imu`, after the rotation correction.
+  lie::SE3d ObservationPose(const NavState& x, const Eigen::Vector3d& rate_imu) const;
+  /// The priors start again at the current estimate.
+  void RecentrePriors();
+};
+
 /// Cost functions (owned) and their blocks for every factor of the window.
 struct FactorSet {
   std::vector<std::unique_ptr<ceres::CostFunction>> owned;
@@ -56,9 +88,11 @@ std::vector<BlockRef> StateBlockRefs(WindowState* state, bool use_imu);
 
 /// Every factor of the window: the prior (if any), IMU factors (using the shared gravity block
 /// `gravity_map`) or constant-velocity factors, zero-velocity factors of states at rest, the
-/// point-to-plane factors of scans with matches, and those between scans (pairs).
+/// point-to-plane factors of scans with matches (with `calibration`, when not null, and its
+/// priors), and those between scans (pairs).
 FactorSet BuildFactors(const Window& window, const MarginalPrior* prior, double* gravity_map,
-                       const EstimatorOptions& options, bool use_imu);
+                       WindowCalibration* calibration, const EstimatorOptions& options,
+                       bool use_imu);
 
 /// True when `factor` uses any of `blocks`' values.
 bool Touches(const FactorRef& factor, const std::vector<BlockRef>& blocks);

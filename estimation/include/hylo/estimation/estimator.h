@@ -16,6 +16,7 @@
 // the state leaves its window, with everything the later scans taught it. Trajectories and
 // their errors use finalized states; the odometry stream uses the live one.
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -64,6 +65,21 @@ struct UpdateSummary {
   std::string message;           ///< empty when all went well; otherwise why not
 };
 
+/// What a back-end estimated online of the sensor set-up's calibration: corrections to the
+/// configured values, each with its standard deviation from the estimator's information.
+/// Nothing is estimated unless the configuration asks (sliding_window.estimate_*).
+struct OnlineCalibration {
+  bool time_offset_estimated = false;
+  /// Add to the configured lidar.time_offset_s: a scan stamped t (lidar clock) was taken at
+  /// t + time_offset_s + correction on the IMU's clock, s.
+  double time_offset_correction_s = 0.0;
+  double time_offset_sigma_s = 0.0;
+  bool extrinsic_rotation_estimated = false;
+  /// R_imu_lidar = Exp(correction) · R_imu_lidar(configured): rotation vector, IMU frame, rad.
+  Eigen::Vector3d extrinsic_rotation_correction_rad = Eigen::Vector3d::Zero();
+  Eigen::Vector3d extrinsic_rotation_sigma_rad = Eigen::Vector3d::Zero();
+};
+
 class Estimator {
  public:
   enum class Backend { kIeskf, kSlidingWindow };
@@ -105,6 +121,8 @@ class Estimator {
   virtual void TakeFinalized(std::vector<NavState>* states) = 0;
   /// The log ended: every state still open becomes final (the smoother's window).
   virtual void Finish() = 0;
+  /// The calibration estimated online so far (nothing by default).
+  virtual OnlineCalibration Calibration() const { return {}; }
 };
 
 /// "ieskf" / "sliding_window".

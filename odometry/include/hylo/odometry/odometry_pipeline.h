@@ -79,6 +79,9 @@ struct OdometryPipelineOptions {
   /// for every value (each point's work writes only its own outputs; sums run in point order).
   int threads = 0;
   bool IsValid(std::string* why) const;
+
+ private:
+  bool CheckCalibrationHasImu(std::string* why) const;
 };
 
 class OdometryPipeline {

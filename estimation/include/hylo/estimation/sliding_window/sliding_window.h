@@ -9,7 +9,11 @@
 //     against planes of an earlier scan's own points, which move with that scan's pose;
 //   - a Gaussian prior from marginalising the states that left the window (marginalization.h).
 // With an IMU the gravity vector is estimated too (one block shared by the window, as the
-// IESKF's δg); the extrinsic is held at its initial value.
+// IESKF's δg); the extrinsic is held at its initial value unless the configuration asks for
+// online calibration (sliding_window.estimate_time_offset / estimate_extrinsic_rotation):
+// then a clock-offset correction and an extrinsic rotation correction, shared by the window,
+// move every scan's points (calibration_factors.h), each under a prior at the configured value,
+// and Calibration() reports them with their standard deviations.
 //
 // Plane association: only the newest scan is associated again between solver rounds, with
 // the map and with each earlier scan of the window; older scans keep the matches found while
@@ -29,8 +33,10 @@
 
 namespace hylo::estimation {
 
-struct WindowState;    // sliding_window.cpp
-struct MarginalPrior;  // marginalization.h
+struct WindowState;        // sliding_window_state.h
+struct WindowCalibration;  // sliding_window_state.h
+struct MarginalPrior;      // marginalization.h
+struct BlockRef;           // marginalization.h
 
 class SlidingWindow final : public BackendBase {
  public:
@@ -43,6 +49,7 @@ class SlidingWindow final : public BackendBase {
   UpdateSummary Update(const DeskewedScan& scan, const registration::PlaneMatcher& planes) override;
   StateCovariance Covariance() const override { return covariance_; }
   void Finish() override { FinalizeWindow(); }
+  OnlineCalibration Calibration() const override;
 
   /// States currently in the window, oldest first (for tests and diagnostics).
   std::vector<NavState> WindowStates() const;
@@ -55,6 +62,7 @@ class SlidingWindow final : public BackendBase {
   };
 
   void AppendState(const DeskewedScan& scan);  // sliding_window.cpp
+  void SetRates(const NavState& last, WindowState* next);  // before `next` joins the window
   void SetNewestScan(const DeskewedScan& scan);
   void MarginalizeOldest();  // sliding_window.cpp
   void Correct(const DeskewedScan& scan, const registration::PlaneMatcher& planes,
@@ -68,6 +76,10 @@ class SlidingWindow final : public BackendBase {
   void FinishUpdate(UpdateSummary* summary);
   void ComputeCovariance();
   NavState StateAt(std::size_t index) const;
+  /// Where the points of window state `index` (points_imu) lie in the map: its pose, or with
+  /// online calibration the pose the calibration makes of it.
+  lie::SE3d ObservationPose(std::size_t index) const;
+  std::vector<BlockRef> CalibrationBlocks();  // empty without online calibration
   void FinalizeWindow();                // every scan state still in the window
   std::vector<double*> GlobalBlocks();  // blocks shared by the window (gravity with an IMU)
 
@@ -77,6 +89,10 @@ class SlidingWindow final : public BackendBase {
   StateCovariance initial_covariance_ = StateCovariance::Identity();
   std::deque<std::unique_ptr<WindowState>> window_;  // oldest first; stable block addresses
   std::unique_ptr<MarginalPrior> prior_;
+  // Online calibration (null when off); it outlives restarts of the window.
+  std::unique_ptr<WindowCalibration> calibration_;
+  Eigen::MatrixXd calibration_covariance_;  // of the calibration blocks' tangents
+  bool calibration_started_ = false;        // the configured extrinsic was taken
   // AssociateNewest's per-point scratch, kept from scan to scan (no allocation per round).
   std::vector<registration::Plane> point_planes_;
   std::vector<char> point_matched_;

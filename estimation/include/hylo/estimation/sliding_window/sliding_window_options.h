@@ -47,10 +47,25 @@ struct SlidingWindowOptions {
   /// grow with the square of its size.
   int pair_points = 400;
 
+  /// Online calibration (needs an IMU): the lidar-IMU clock offset and a small rotation of the
+  /// extrinsic, estimated with the window's states as corrections to the configured values,
+  /// each held by a Gaussian prior at the configured value (Estimator::Calibration). Off by
+  /// default: both are observable only while the vehicle turns and accelerates, and a
+  /// configuration that is right gains nothing from them.
+  bool estimate_time_offset = false;
+  bool estimate_extrinsic_rotation = false;
+  double time_offset_prior_sigma_s = 0.05;            ///< prior on the correction, s (> 0)
+  double extrinsic_rotation_prior_sigma_rad = 0.035;  ///< ... per axis, rad (> 0), about 2°
+
+  bool EstimatesCalibration() const { return estimate_time_offset || estimate_extrinsic_rotation; }
+
   /// The kernel of robust_loss at robust_loss_scale_m.
   registration::RobustKernel Kernel() const { return {robust_loss, robust_loss_scale_m}; }
 
   bool IsValid(std::string* why) const;
+
+ private:
+  bool CheckCalibrationWithoutPairs(std::string* why) const;
 };
 
 /// Configuration names of the enums ("sparse_normal_cholesky", ..., "none", "huber",
