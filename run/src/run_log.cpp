@@ -102,6 +102,26 @@ std::size_t WriteRunFiles(const RunRequest& request, const Session& session,
 
 }  // namespace
 
+io::Json OnlineCalibrationJson(const estimation::OnlineCalibration& c,
+                               double configured_time_offset_s) {
+  constexpr double kDegPerRad = 180.0 / M_PI;
+  io::Json j;
+  if (c.time_offset_estimated) {
+    j["time_offset_correction_s"] = c.time_offset_correction_s;
+    j["time_offset_sigma_s"] = c.time_offset_sigma_s;
+    j["lidar_time_offset_s"] = configured_time_offset_s + c.time_offset_correction_s;
+  }
+  if (c.extrinsic_rotation_estimated) {
+    const Eigen::Vector3d& r = c.extrinsic_rotation_correction_rad;
+    const Eigen::Vector3d& s = c.extrinsic_rotation_sigma_rad;
+    j["extrinsic_rotation_correction_deg"] =
+        io::Json::array({r.x() * kDegPerRad, r.y() * kDegPerRad, r.z() * kDegPerRad});
+    j["extrinsic_rotation_sigma_deg"] =
+        io::Json::array({s.x() * kDegPerRad, s.y() * kDegPerRad, s.z() * kDegPerRad});
+  }
+  return j;
+}
+
 io::Json PipelineCountersJson(const odometry::PipelineCounters& c) {
   io::Json j;
   j["scans_processed"] = c.scans_processed;
@@ -245,6 +265,11 @@ RunResult RunLog(const RunRequest& request) {
   j["scans_by_pose_status"] = {{"valid", by_status[0]}, {"lost", by_status[1]},
                                {"provisional", by_status[2]}};
   j["counters"] = PipelineCountersJson(pipeline.counters());
+  const estimation::OnlineCalibration calibration = pipeline.estimator().Calibration();
+  if (calibration.time_offset_estimated || calibration.extrinsic_rotation_estimated) {
+    j["online_calibration"] =
+        OnlineCalibrationJson(calibration, config.pipeline.lidar.time_offset_s);
+  }
   const logs::LogReadCounters& read = log->counters();
   j["log_read"]["imu_messages"] = read.imu_messages;
   j["log_read"]["scan_messages"] = read.scan_messages;

@@ -62,6 +62,7 @@ ModeFigures Score(const PipelineRun& run, const std::vector<TimedPose>& truth,
     f.out_of_time += r.update.out_of_time ? 1 : 0;
   }
   f.scans = run.results.size();
+  f.calibration = run.pipeline.estimator().Calibration();
   f.cpu_ms_median = Percentile(cpu, 0.5);
   f.cpu_ms_p99 = Percentile(cpu, 0.99);
   f.wall_ms_median = Percentile(wall, 0.5);

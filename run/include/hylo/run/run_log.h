@@ -73,6 +73,12 @@ struct RunResult {
 /// the `counters` object of summary.json; the ROS node's health topic carries the same.
 io::Json PipelineCountersJson(const odometry::PipelineCounters& counters);
 
+/// What the back-end calibrated online, as the `online_calibration` object of summary.json:
+/// the clock-offset correction, its sigma and the offset to configure (lidar.time_offset_s),
+/// the extrinsic rotation correction (rotation vector, IMU frame) and its sigmas, in degrees.
+io::Json OnlineCalibrationJson(const estimation::OnlineCalibration& calibration,
+                               double configured_time_offset_s);
+
 /// A damaged log's recovery as the `log.recovery` object of summary.json (and `hylo info`).
 io::Json LogRecoveryJson(const logs::LogRecovery& recovery);
 

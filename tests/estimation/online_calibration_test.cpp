@@ -1,0 +1,126 @@
+// The smoother's online calibration on randomized scenarios, each configured from its sensor
+// sheet and localized for 35 s in a map of its mapping drive's scans at their true poses:
+//   - with a 20 ms clock offset and a 1° extrinsic rotation left out of the configuration,
+//     the window must find the offset within 5 ms and bring the rotation within 0.5°: the
+//     worst of twelve scenarios, rounded up (the targets, 2 ms and 0.2°, are missed on some of
+//     them: docs/results.md);
+//   - with the configuration right, it must not wander off it (the same bounds).
+// The truth is the scenario's own clock offset and extrinsic; the sheet rounds them to 1 ms
+// and 0.1°, which the window sees. Scenarios 3, 6, 8, 9 and 10 were used while the
+// calibration was developed; these are two of the others, the two cheapest to simulate.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "estimation/scenario_run.h"
+#include "hylo/common/time.h"
+#include "hylo/lie/so3.h"
+#include "hylo/run/run_log.h"
+
+namespace hylo::testing {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+constexpr double kClockError_s = 0.020;
+const Eigen::Vector3d kRotationError_rad =
+    1.0 * kDeg * Eigen::Vector3d(1.0, -1.0, 1.0).normalized();
+
+struct CalibrationErrors {
+  double time_offset_s = 0.0;  ///< estimated minus true correction
+  double time_offset_sigma_s = 0.0;
+  double rotation_deg = 0.0;        ///< angle between the estimated and the true extrinsic rotation
+  double rotation_sigma_deg = 0.0;  ///< largest of the three
+  double ate_m = 0.0;
+};
+
+// Runs drive B in the true-pose map with calibration on, the configuration wrong by
+// `clock_error_s` and `rotation_error_rad` (0 and zero: right, as far as the sheet knows).
+CalibrationErrors Calibrate(uint64_t number, double clock_error_s,
+                            const Eigen::Vector3d& rotation_error_rad) {
+  sim::Scenario scenario = sim::DrawScenario(number);
+  scenario.max_drive_a_s = 40.0;
+  scenario.max_drive_b_s = 35.0;
+  ScenarioRunOptions options;
+  options.preset_dir = std::string(HYLO_SOURCE_DIR) + "/config/presets";
+  options.slam = false;
+  options.backends = {estimation::Estimator::Backend::kSlidingWindow};
+  Variant wrong;
+  wrong.name = "calibrating";
+  lie::SO3d R_imu_lidar_configured;
+  double configured_offset_s = 0.0;
+  wrong.adjust = [&](odometry::OdometryPipelineOptions* o) {
+    // No wall-time stop of the solve: the figures must not depend on the machine's load.
+    o->estimator.sliding_window.max_solver_time_s = 1.0;
+    o->lidar.time_offset_s -= clock_error_s;
+    o->T_imu_lidar.so3() = lie::SO3d::Exp(rotation_error_rad) * o->T_imu_lidar.so3();
+    o->estimator.sliding_window.estimate_time_offset = true;
+    o->estimator.sliding_window.estimate_extrinsic_rotation = true;
+    R_imu_lidar_configured = o->T_imu_lidar.so3();
+    configured_offset_s = o->lidar.time_offset_s;
+  };
+  options.variants = {wrong};
+  const ScenarioFigures f = RunScenario(scenario, options);
+  EXPECT_EQ(f.runs.size(), 1u);
+  const ModeFigures& run = f.runs.at(0).localization;
+  EXPECT_FALSE(run.failed) << run.message;
+  const estimation::OnlineCalibration& c = run.calibration;
+  EXPECT_TRUE(c.time_offset_estimated && c.extrinsic_rotation_estimated);
+
+  // t_imu = t_lidar − lidar_time_offset: the offset a configuration needs.
+  const double true_offset_s = -NanosToSeconds(scenario.lidar_time_offset_ns);
+  const lie::SO3d R_true = lie::SO3d::FromMatrix(scenario.T_imu_lidar.linear());
+  const lie::SO3d Q_true = R_true * R_imu_lidar_configured.Inverse();
+  const lie::SO3d Q_estimated = lie::SO3d::Exp(c.extrinsic_rotation_correction_rad);
+  CalibrationErrors e;
+  e.time_offset_s = c.time_offset_correction_s - (true_offset_s - configured_offset_s);
+  e.time_offset_sigma_s = c.time_offset_sigma_s;
+  e.rotation_deg = lie::Minus(Q_estimated, Q_true).norm() / kDeg;
+  e.rotation_sigma_deg = c.extrinsic_rotation_sigma_rad.maxCoeff() / kDeg;
+  e.ate_m = run.ate_m;
+  std::printf(
+      "scenario %llu (%s): time offset error %+.2f ms (sigma %.2f ms), rotation error %.3f deg "
+      "(sigma %.3f deg), correction found %+.2f ms, %.3f deg; ATE %.3f m\n",
+      static_cast<unsigned long long>(number), f.summary.c_str(), e.time_offset_s * 1e3,
+      e.time_offset_sigma_s * 1e3, e.rotation_deg, e.rotation_sigma_deg,
+      c.time_offset_correction_s * 1e3, c.extrinsic_rotation_correction_rad.norm() / kDeg, e.ate_m);
+  return e;
+}
+
+class OnlineCalibration : public ::testing::TestWithParam<uint64_t> {};
+
+TEST_P(OnlineCalibration, FindsAClockOffsetAndAnExtrinsicRotationLeftOutOfTheConfiguration) {
+  const CalibrationErrors e = Calibrate(GetParam(), kClockError_s, kRotationError_rad);
+  EXPECT_LE(std::abs(e.time_offset_s), 0.005);
+  EXPECT_LE(e.rotation_deg, 0.5);
+  EXPECT_LE(e.ate_m, 0.03);
+}
+
+TEST(OnlineCalibration, StaysNearARightConfiguration) {
+  const CalibrationErrors e = Calibrate(12, 0.0, Eigen::Vector3d::Zero());
+  EXPECT_LE(std::abs(e.time_offset_s), 0.005);
+  EXPECT_LE(e.rotation_deg, 0.5);
+  EXPECT_LE(e.ate_m, 0.03);
+}
+
+TEST(OnlineCalibration, SummaryGivesTheOffsetToConfigureAndDegrees) {
+  estimation::OnlineCalibration c;
+  c.time_offset_estimated = true;
+  c.time_offset_correction_s = 0.02;
+  c.time_offset_sigma_s = 0.001;
+  const io::Json time_only = run::OnlineCalibrationJson(c, -0.005);
+  EXPECT_NEAR(time_only.at("lidar_time_offset_s").get<double>(), 0.015, 1e-12);
+  EXPECT_NEAR(time_only.at("time_offset_sigma_s").get<double>(), 0.001, 1e-12);
+  EXPECT_FALSE(time_only.contains("extrinsic_rotation_correction_deg"));
+  c.extrinsic_rotation_estimated = true;
+  c.extrinsic_rotation_correction_rad = Eigen::Vector3d(0.0, 0.0, -kDeg);
+  const io::Json both = run::OnlineCalibrationJson(c, 0.0);
+  EXPECT_NEAR(both.at("extrinsic_rotation_correction_deg").at(2).get<double>(), -1.0, 1e-12);
+}
+
+INSTANTIATE_TEST_SUITE_P(Unseen, OnlineCalibration, ::testing::Values(2u, 12u),
+                         [](const auto& info) { return "Scenario" + std::to_string(info.param); });
+
+}  // namespace
+}  // namespace hylo::testing
