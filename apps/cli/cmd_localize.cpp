@@ -58,6 +58,8 @@ void RunLocalize(const LocalizeArgs& args) {
       io::NumberAt(s, "path_length_m"), s.at("events").size(), io::NumberAt(s, "c2c.mean_m"),
       io::NumberAt(s, "c2c.std_m"), io::NumberAt(s, "ms_per_scan_median"),
       io::NumberAt(s, "ms_per_scan_p99"));
+  const std::string calibration = run::OnlineCalibrationLine(s);
+  if (!calibration.empty()) std::printf("%s\n", calibration.c_str());
 }
 
 }  // namespace

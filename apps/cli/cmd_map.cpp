@@ -41,6 +41,8 @@ void RunMap(const MapArgs& args) {
               result.summary.at("map_points").get<std::size_t>(),
               io::NumberAt(result.summary, "ms_per_scan_median"),
               io::NumberAt(result.summary, "ms_per_scan_p99"));
+  const std::string calibration = run::OnlineCalibrationLine(result.summary);
+  if (!calibration.empty()) std::printf("%s\n", calibration.c_str());
 }
 
 }  // namespace

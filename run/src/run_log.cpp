@@ -122,6 +122,33 @@ io::Json OnlineCalibrationJson(const estimation::OnlineCalibration& c,
   return j;
 }
 
+std::string OnlineCalibrationLine(const io::Json& summary) {
+  if (!summary.contains("online_calibration")) return "";
+  const io::Json& c = summary.at("online_calibration");
+  std::string line = "online calibration (sigma from the window, optimistic):";
+  char buffer[160];
+  if (c.contains("lidar_time_offset_s")) {
+    std::snprintf(buffer, sizeof(buffer),
+                  " lidar.time_offset_s %.4f s (correction %+.1f ms, sigma %.1f ms)",
+                  c.at("lidar_time_offset_s").get<double>(),
+                  1e3 * c.at("time_offset_correction_s").get<double>(),
+                  1e3 * c.at("time_offset_sigma_s").get<double>());
+    line += buffer;
+  }
+  if (c.contains("extrinsic_rotation_correction_deg")) {
+    const io::Json& r = c.at("extrinsic_rotation_correction_deg");
+    const io::Json& sigma = c.at("extrinsic_rotation_sigma_deg");
+    std::snprintf(
+        buffer, sizeof(buffer),
+        "%s extrinsic rotation correction [%.2f, %.2f, %.2f] deg (sigma [%.2f, %.2f, %.2f])",
+        c.contains("lidar_time_offset_s") ? ";" : "", r.at(0).get<double>(), r.at(1).get<double>(),
+        r.at(2).get<double>(), sigma.at(0).get<double>(), sigma.at(1).get<double>(),
+        sigma.at(2).get<double>());
+    line += buffer;
+  }
+  return line;
+}
+
 io::Json PipelineCountersJson(const odometry::PipelineCounters& c) {
   io::Json j;
   j["scans_processed"] = c.scans_processed;

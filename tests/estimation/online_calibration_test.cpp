@@ -117,6 +117,14 @@ TEST(OnlineCalibration, SummaryGivesTheOffsetToConfigureAndDegrees) {
   c.extrinsic_rotation_correction_rad = Eigen::Vector3d(0.0, 0.0, -kDeg);
   const io::Json both = run::OnlineCalibrationJson(c, 0.0);
   EXPECT_NEAR(both.at("extrinsic_rotation_correction_deg").at(2).get<double>(), -1.0, 1e-12);
+  io::Json summary;
+  EXPECT_EQ(run::OnlineCalibrationLine(summary), "");
+  summary["online_calibration"] = both;
+  EXPECT_NE(
+      run::OnlineCalibrationLine(summary).find("lidar.time_offset_s 0.0200 s (correction +20.0 ms"),
+      std::string::npos)
+      << run::OnlineCalibrationLine(summary);
+  EXPECT_NE(run::OnlineCalibrationLine(summary).find("[0.00, 0.00, -1.00] deg"), std::string::npos);
 }
 
 INSTANTIATE_TEST_SUITE_P(Unseen, OnlineCalibration, ::testing::Values(2u, 12u),

@@ -79,6 +79,10 @@ io::Json PipelineCountersJson(const odometry::PipelineCounters& counters);
 io::Json OnlineCalibrationJson(const estimation::OnlineCalibration& calibration,
                                double configured_time_offset_s);
 
+/// The `online_calibration` of a run's summary as one line for the user ("" when there is
+/// none): the offset to configure and the rotation correction, each with its sigma.
+std::string OnlineCalibrationLine(const io::Json& summary);
+
 /// A damaged log's recovery as the `log.recovery` object of summary.json (and `hylo info`).
 io::Json LogRecoveryJson(const logs::LogRecovery& recovery);
 
