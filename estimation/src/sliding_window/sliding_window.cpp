@@ -128,12 +128,19 @@ void SlidingWindow::AppendState(const DeskewedScan& scan) {
   if (imu_options_.enabled && !imu_.empty()) {
     next->imu =
         std::make_unique<ImuPreintegration>(last.gyro_bias, last.accel_bias, imu_options_.noise);
+    Eigen::Vector3d turned_imu = Eigen::Vector3d::Zero();
+    double span_s = 0.0;
     for (const ImuInterval& in : imu_.Intervals(last.t_ns, scan.t_ns)) {
       next->imu->Integrate(in);
-      next->turned_before_imu += in.gyro_imu * in.dt_s;
-      next->span_before_s += in.dt_s;
+      turned_imu += in.gyro_imu * in.dt_s;
+      span_s += in.dt_s;
     }
-    SetRates(last, next.get());
+    // The mean rate since the previous state, not a sample's: a sample carries the vibration,
+    // which would bias a clock offset estimated from it toward zero. Set once, from the
+    // samples before the state: a rate revised when later samples come (a mean centred on the
+    // state) moved the older scans' residuals against the newest one's and biased the offset
+    // by 3-5 ms on some scenarios.
+    if (span_s > 0.0) next->rate_imu = turned_imu / span_s - last.gyro_bias;
     predicted = next->imu->Predict(last, last.gravity_map);
   }
   next->blocks.FromNavState(predicted);
@@ -143,21 +150,6 @@ void SlidingWindow::AppendState(const DeskewedScan& scan) {
   imu_.DropBefore(scan.t_ns);
   while (static_cast<int>(window_.size()) > options_.sliding_window.window_size) {
     MarginalizeOldest();
-  }
-}
-
-void SlidingWindow::SetRates(const NavState& last, WindowState* next) {
-  // Mean rates, not a sample's: a sample carries the vibration, which would bias a clock
-  // offset estimated from it toward zero. The newest state has the mean since the state
-  // before it; that state, now between two intervals, the mean over both (centred on it).
-  if (next->span_before_s > 0.0) {
-    next->rate_imu = next->turned_before_imu / next->span_before_s - last.gyro_bias;
-  }
-  WindowState& previous = *window_.back();
-  const double span_s = previous.span_before_s + next->span_before_s;
-  if (previous.span_before_s > 0.0 && span_s > 0.0) {
-    previous.rate_imu =
-        (previous.turned_before_imu + next->turned_before_imu) / span_s - last.gyro_bias;
   }
 }
 

@@ -30,11 +30,9 @@ struct WindowState {
   /// none: it is not a scan's pose).
   bool holds_scan = false;
   StateBlocks blocks;
-  /// The body rate less the gyro bias about t_ns (a mean over the IMU intervals next to it,
-  /// SlidingWindow::SetRates), rad/s, IMU frame: how the pose moves over a clock offset.
+  /// The body rate less the gyro bias about t_ns (the mean since the previous state), rad/s,
+  /// IMU frame: how the pose moves over a clock offset.
   Eigen::Vector3d rate_imu = Eigen::Vector3d::Zero();
-  Eigen::Vector3d turned_before_imu = Eigen::Vector3d::Zero();  ///< ∫ gyro dt since the last state
-  double span_before_s = 0.0;                                   ///< ... over this long, s
   /// The IMU showed rest since the previous state: a zero-velocity factor holds it.
   bool at_rest = false;
   /// Preintegrated IMU from the previous window state to this one (null for the first state

@@ -62,7 +62,6 @@ class SlidingWindow final : public BackendBase {
   };
 
   void AppendState(const DeskewedScan& scan);  // sliding_window.cpp
-  void SetRates(const NavState& last, WindowState* next);  // before `next` joins the window
   void SetNewestScan(const DeskewedScan& scan);
   void MarginalizeOldest();  // sliding_window.cpp
   void Correct(const DeskewedScan& scan, const registration::PlaneMatcher& planes,
