@@ -55,6 +55,12 @@ NavState BackendBase::PredictAt(int64_t t_ns) const {
                         constant_velocity_.omega_imu(), t_ns, &gap);
 }
 
+std::vector<NavState> BackendBase::PredictAlong(const std::vector<int64_t>& times_ns) const {
+  const ImuGapModel gap = imu_.GapModel();
+  return PredictNominalAlong(state_, imu_.samples(), imu_options_.enabled,
+                             constant_velocity_.omega_imu(), times_ns, &gap);
+}
+
 void BackendBase::TakeFinalized(std::vector<NavState>* states) {
   states->insert(states->end(), std::make_move_iterator(finalized_.begin()),
                  std::make_move_iterator(finalized_.end()));

@@ -47,6 +47,42 @@ StateCovariance PropagationJacobian(const NavState& x, const ImuInterval& in) {
   return F;
 }
 
+StateCovariance PropagateCovariance(const StateCovariance& F, const StateCovariance& P) {
+  constexpr int kBlocks = kDim / 3;
+  enum class Block : uint8_t { kZero, kIdentity, kGeneral };
+  Block kind[kBlocks][kBlocks];
+  for (int i = 0; i < kBlocks; ++i) {
+    for (int j = 0; j < kBlocks; ++j) {
+      const auto f = F.block<3, 3>(3 * i, 3 * j);
+      kind[i][j] = (f.array() == 0.0).all()                        ? Block::kZero
+                   : (f - Eigen::Matrix3d::Identity()).isZero(0.0) ? Block::kIdentity
+                                                                   : Block::kGeneral;
+    }
+  }
+  StateCovariance FP = StateCovariance::Zero();
+  for (int i = 0; i < kBlocks; ++i) {
+    for (int k = 0; k < kBlocks; ++k) {
+      if (kind[i][k] == Block::kIdentity) {
+        FP.middleRows<3>(3 * i) += P.middleRows<3>(3 * k);
+      } else if (kind[i][k] == Block::kGeneral) {
+        FP.middleRows<3>(3 * i).noalias() += F.block<3, 3>(3 * i, 3 * k) * P.middleRows<3>(3 * k);
+      }
+    }
+  }
+  StateCovariance FPFt = StateCovariance::Zero();
+  for (int j = 0; j < kBlocks; ++j) {
+    for (int k = 0; k < kBlocks; ++k) {
+      if (kind[j][k] == Block::kIdentity) {
+        FPFt.middleCols<3>(3 * j) += FP.middleCols<3>(3 * k);
+      } else if (kind[j][k] == Block::kGeneral) {
+        FPFt.middleCols<3>(3 * j).noalias() +=
+            FP.middleCols<3>(3 * k) * F.block<3, 3>(3 * j, 3 * k).transpose();
+      }
+    }
+  }
+  return FPFt;
+}
+
 StateCovariance PropagationNoise(const ImuNoise& noise, const ImuInterval& in) {
   // A continuous density σ_c gives a per-sample variance σ_c²/dt, integrated over dt:
   // σ_c² dt on the propagated quantity (the Jr factor on the rotation is ≈ I at IMU rates).
@@ -165,6 +201,32 @@ NavState PredictNominal(const NavState& x0, const std::vector<ImuSample>& imu, b
   }
   x.t_ns = t_ns;
   return x;
+}
+
+std::vector<NavState> PredictNominalAlong(const NavState& x0, const std::vector<ImuSample>& imu,
+                                          bool use_imu, const Eigen::Vector3d& omega_cv_imu,
+                                          const std::vector<int64_t>& times_ns,
+                                          const ImuGapModel* gap) {
+  std::vector<NavState> states;
+  states.reserve(times_ns.size());
+  NavState at_sample = x0;  // carried to the last sample stamp passed so far
+  auto next = std::upper_bound(imu.begin(), imu.end(), x0.t_ns,
+                               [](int64_t t, const ImuSample& s) { return t < s.t_ns; });
+  for (int64_t t : times_ns) {
+    if (use_imu) {
+      // The last sample strictly before t: PredictNominal to t splits there too.
+      auto last = next;
+      while (last != imu.end() && last->t_ns < t) ++last;
+      if (last != next) {
+        at_sample = PredictNominal(at_sample, imu, use_imu, omega_cv_imu, (last - 1)->t_ns, gap);
+        next = last;
+      }
+      states.push_back(PredictNominal(at_sample, imu, use_imu, omega_cv_imu, t, gap));
+    } else {
+      states.push_back(PredictNominal(x0, imu, use_imu, omega_cv_imu, t, gap));
+    }
+  }
+  return states;
 }
 
 }  // namespace hylo::estimation

@@ -23,9 +23,12 @@ SweepMotion::SweepMotion(int64_t start_ns, int64_t end_ns, const Estimator& esti
   }
   std::sort(times_ns_.begin() + 1, times_ns_.end());
   if (end_ns > start_ns) times_ns_.push_back(end_ns);
-  const lie::SE3d T_end_map = estimator.PredictAt(end_ns).T_map_lidar().Inverse();
-  for (int64_t t : times_ns_) {
-    const lie::SE3d T_end_t = T_end_map * estimator.PredictAt(t).T_map_lidar();
+  const std::vector<NavState> states = estimator.PredictAlong(times_ns_);
+  const lie::SE3d T_end_map = (end_ns > start_ns ? states.back() : estimator.PredictAt(end_ns))
+                                  .T_map_lidar()
+                                  .Inverse();
+  for (const NavState& x : states) {
+    const lie::SE3d T_end_t = T_end_map * x.T_map_lidar();
     rotations_.push_back(T_end_t.so3().unit_quaternion());
     translations_.push_back(T_end_t.translation());
   }

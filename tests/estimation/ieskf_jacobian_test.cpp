@@ -66,6 +66,25 @@ TEST_P(JacobianTest, PropagationJacobianMatchesCentralDifferences) {
   }
 }
 
+TEST_P(JacobianTest, BlockCovariancePropagationEqualsTheDenseProduct) {
+  std::mt19937 rng(4);
+  for (int trial = 0; trial < 10; ++trial) {
+    const NavState x = RandomState(&rng, GetParam());
+    ImuInterval in;
+    in.dt_s = 0.0025 * (1 + trial);
+    in.gyro_imu = Eigen::Vector3d(0.3, -0.8, 1.2) * (trial % 3);
+    in.accel_imu = Eigen::Vector3d(0.5, -1.0, 9.6);
+    const StateCovariance A = StateCovariance::Random();
+    const StateCovariance P = A * A.transpose() + StateCovariance::Identity();
+    // The propagation Jacobian, and a matrix with no zero or identity block at all.
+    for (const StateCovariance& F : {PropagationJacobian(x, in), StateCovariance(A)}) {
+      const StateCovariance dense = F * P * F.transpose();
+      const StateCovariance blocks = PropagateCovariance(F, P);
+      EXPECT_LT((blocks - dense).norm(), 1e-12 * dense.norm()) << "trial " << trial;
+    }
+  }
+}
+
 TEST_P(JacobianTest, PointToPlaneJacobianMatchesCentralDifferences) {
   std::mt19937 rng(3);
   const int columns[12] = {0, 1, 2, 3, 4, 5, 18, 19, 20, 21, 22, 23};

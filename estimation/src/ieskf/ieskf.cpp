@@ -21,7 +21,7 @@ void Ieskf::Propagate(int64_t t_ns) {
   }
   for (const ImuInterval& in : imu_.Intervals(state_.t_ns, t_ns)) {
     const StateCovariance F = PropagationJacobian(state_, in);
-    P_ = F * P_ * F.transpose() + PropagationNoise(imu_options_.noise, in);
+    P_ = PropagateCovariance(F, P_) + PropagationNoise(imu_options_.noise, in);
     state_ = PropagateNominal(state_, in);
   }
   state_.t_ns = t_ns;

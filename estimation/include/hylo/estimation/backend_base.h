@@ -23,6 +23,7 @@ class BackendBase : public Estimator {
  public:
   void AddImu(const ImuSample& sample) final { imu_.Add(sample); }
   NavState PredictAt(int64_t t_ns) const final;
+  std::vector<NavState> PredictAlong(const std::vector<int64_t>& times_ns) const final;
   bool initialized() const final { return initialized_; }
   const NavState& state() const final { return state_; }
   void TakeFinalized(std::vector<NavState>* states) final;

@@ -98,6 +98,15 @@ class Estimator {
   /// Nominal state at `t_ns` propagated from the last update with the buffered IMU (held at
   /// the last sample beyond it). For t_ns before the state time, the state itself.
   virtual NavState PredictAt(int64_t t_ns) const = 0;
+  /// PredictAt at each of `times_ns` (ascending), the same states. A back-end with buffered
+  /// IMU overrides it to walk its samples once: after a long lidar gap with the IMU running,
+  /// a sweep's dozen knots would otherwise each re-integrate every sample of the gap.
+  virtual std::vector<NavState> PredictAlong(const std::vector<int64_t>& times_ns) const {
+    std::vector<NavState> states;
+    states.reserve(times_ns.size());
+    for (int64_t t : times_ns) states.push_back(PredictAt(t));
+    return states;
+  }
   /// Whether the scans registered from now on join the map the updates search (SLAM; hybrid
   /// mode once started; odometry off a tiled prior), told before each Update; default true.
   /// A back-end whose scans join the map only once finalized (the smoother) then searches its

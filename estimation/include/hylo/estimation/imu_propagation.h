@@ -50,6 +50,12 @@ NavState PropagateNominal(const NavState& x, const ImuInterval& interval);
 /// F = ∂(x' ⊟ x̂')/∂(x ⊟ x̂) at x (24×24).
 StateCovariance PropagationJacobian(const NavState& x, const ImuInterval& interval);
 
+/// F P Fᵀ for a propagation Jacobian F, by its 3×3 blocks: F is the identity but for about
+/// nine blocks, so the zero blocks are skipped and the identity ones copy (a fifth of the
+/// dense product's work; it is paid per IMU sample, and after a lidar gap for every sample of
+/// the gap on one scan). Equal to the dense product up to the order of summation.
+StateCovariance PropagateCovariance(const StateCovariance& F, const StateCovariance& P);
+
 /// Discrete process noise added over `interval` (white noise and bias random walks, and the
 /// gap error of an interval inside an IMU gap).
 StateCovariance PropagationNoise(const ImuNoise& noise, const ImuInterval& interval);
@@ -72,5 +78,13 @@ std::vector<ImuInterval> MakeIntervals(const std::vector<ImuSample>& samples, in
 NavState PredictNominal(const NavState& x, const std::vector<ImuSample>& imu, bool use_imu,
                         const Eigen::Vector3d& omega_cv_imu, int64_t t_ns,
                         const ImuGapModel* gap = nullptr);
+
+/// PredictNominal at each of `times_ns` (ascending), bit for bit, in one walk over the samples:
+/// each time continues from the state at the last sample before it, where the intervals of
+/// MakeIntervals split anyway.
+std::vector<NavState> PredictNominalAlong(const NavState& x, const std::vector<ImuSample>& imu,
+                                          bool use_imu, const Eigen::Vector3d& omega_cv_imu,
+                                          const std::vector<int64_t>& times_ns,
+                                          const ImuGapModel* gap = nullptr);
 
 }  // namespace hylo::estimation
