@@ -229,6 +229,13 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
   const double cpu_start_ms = CpuMs();
   const double process_cpu_start_ms = CpuMs(CLOCK_PROCESS_CPUTIME_ID);
   if (map_.streamed() && !FollowStreamedPrior()) return false;
+  // After a gap in the data the scan is propagated only, not registered. A pose carried
+  // through a gap by the IMU alone may be metres off; the update would pull it part of the
+  // way to whatever fits there (and velocity and biases with it) at the cost of several
+  // full iterations, while only the supervisor's fit near the propagated pose may confirm it.
+  // After a gap without IMU the pose is unknown: the scan is not registered either, and the
+  // supervisor searches for the place.
+  const bool after_gap = AfterDataGapInMap(group->scan.end_t_ns);
   const bool blind_gap = RestartAfterBlindGap(group->scan.end_t_ns, group->imu);
   std::vector<int64_t> knots;
   for (const ImuSample& s : group->imu) {
@@ -254,18 +261,16 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
 
   const auto update_start = std::chrono::steady_clock::now();
   const bool searching = supervisor_ && supervisor_->searching();
-  // After a gap without IMU the pose is unknown: registering the scan near where the gap
-  // began would pull the restarted state (its attitude, its biases) toward whatever fits
-  // there. It is propagated only; the supervisor searches for the place.
   estimation::DeskewedScan nothing;
   nothing.t_ns = scan.registration.t_ns;
   // A search registers against its own scratch map, which takes every scan at once.
   estimator_->SetScansExtendMap(searching     ? false
                                 : supervisor_ ? supervisor_->ScansExtendMap(scan.registration.t_ns)
                                               : options_.update_map);
-  result->update = estimator_->Update(blind_gap ? nothing : scan.registration,
+  result->update = estimator_->Update(after_gap ? nothing : scan.registration,
                                       searching ? supervisor_->search_matcher() : matcher_);
   if (blind_gap) result->update.message = "not registered: the first scan after a gap without IMU";
+  else if (after_gap) result->update.message = "not registered: the first scan after a gap in the data";
   result->update_ms = MsSince(update_start);
   ++counters_.scans_processed;
   if (!result->update.applied) ++counters_.scans_not_applied;

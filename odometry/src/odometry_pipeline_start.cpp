@@ -159,10 +159,13 @@ void OdometryPipeline::StartMoving(const MeasurementGroup& group,
   status_ = Status::kRunning;
 }
 
+bool OdometryPipeline::AfterDataGapInMap(int64_t scan_end_ns) const {
+  return supervisor_ && supervisor_->started() && !supervisor_->searching() &&
+         supervisor_->on_map() && scan_clock_.GapBefore(scan_end_ns) > 0.0;
+}
+
 bool OdometryPipeline::RestartAfterBlindGap(int64_t scan_end_ns, const std::vector<ImuSample>& imu) {
-  if (!supervisor_ || !supervisor_->started() || supervisor_->searching() ||
-      !supervisor_->on_map() || !options_.imu.enabled || imu.empty() ||
-      scan_clock_.GapBefore(scan_end_ns) == 0.0) {
+  if (!options_.imu.enabled || imu.empty() || !AfterDataGapInMap(scan_end_ns)) {
     return false;  // a lidar that kept coming corrected the state through an IMU gap
   }
   // The estimator's state is the last scan's, the last one corrected: without IMU samples

@@ -160,6 +160,9 @@ class OdometryPipeline {
   // both lidar and IMU: restarts the estimator for the supervisor to check (true) instead of
   // tracking from a state propagated blind through the gap.
   bool RestartAfterBlindGap(int64_t scan_end_ns, const std::vector<ImuSample>& imu);
+  // Localizing in the prior, the scan ending at `scan_end_ns` comes after a gap in the data
+  // (ScanIntervalClock): its pose is the one propagated through the gap, for a fit to confirm.
+  bool AfterDataGapInMap(int64_t scan_end_ns) const;
   void Fail(const std::string& why);
   // A tiled prior before each scan: the loader's news, its failures, on or off the tiles.
   bool FollowStreamedPrior();
