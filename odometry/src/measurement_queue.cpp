@@ -73,6 +73,20 @@ std::vector<ImuSample> MeasurementQueue::PopImuUntil(int64_t t_ns) {
   return out;
 }
 
+std::vector<ImuSample> MeasurementQueue::PopContinuousImu(int64_t after_ns, int64_t t_ns,
+                                                          int64_t max_silence_ns) {
+  std::vector<ImuSample> out;
+  int64_t previous_ns = after_ns;
+  while (!imu_.empty() && imu_.begin()->first <= t_ns &&
+         imu_.begin()->first - previous_ns <= max_silence_ns) {
+    previous_ns = imu_.begin()->first;
+    out.push_back(imu_.begin()->second);
+    last_imu_out_ns_ = previous_ns;
+    imu_.erase(imu_.begin());
+  }
+  return out;
+}
+
 bool MeasurementQueue::Pop(MeasurementGroup* group, bool flush) {
   if (scans_.empty()) return false;
   const LidarScan& next = scans_.begin()->second;

@@ -159,50 +159,6 @@ void OdometryPipeline::StartMoving(const MeasurementGroup& group,
   status_ = Status::kRunning;
 }
 
-bool OdometryPipeline::AfterDataGapInMap(int64_t scan_end_ns) const {
-  return supervisor_ && supervisor_->started() && !supervisor_->searching() &&
-         supervisor_->on_map() && scan_clock_.GapBefore(scan_end_ns) > 0.0;
-}
-
-bool OdometryPipeline::RestartAfterBlindGap(int64_t scan_end_ns, const std::vector<ImuSample>& imu) {
-  if (!options_.imu.enabled || imu.empty() || !AfterDataGapInMap(scan_end_ns)) {
-    return false;  // a lidar that kept coming corrected the state through an IMU gap
-  }
-  // The estimator's state is the last scan's, the last one corrected: without IMU samples
-  // since then for longer than a data gap, it would be propagated blind across the gap (by
-  // samples interpolated over it), and its attitude, velocity and position with it.
-  const estimation::NavState& before = estimator_->state();
-  const int64_t usual_ns = scan_clock_.UsualIntervalNs();
-  if (usual_ns == 0) return false;
-  // The longest silence since that scan (the samples may begin before the gap), and the first
-  // sample after it.
-  std::size_t after = 0;
-  int64_t longest_ns = imu.front().t_ns - before.t_ns;
-  for (std::size_t k = 1; k < imu.size(); ++k) {
-    if (imu[k].t_ns - imu[k - 1].t_ns > longest_ns) {
-      longest_ns = imu[k].t_ns - imu[k - 1].t_ns;
-      after = k;
-    }
-  }
-  if (longest_ns <= ScanIntervalClock::kGapIntervals * usual_ns) return false;
-  // What the gap leaves known: the biases, and the heading and place it began at. Roll and
-  // pitch come again from the accelerometer (gravity, plus whatever the vehicle accelerates,
-  // as in a start on the move), the velocity is unknown: the moving start's uncertainty.
-  Eigen::Vector3d specific_force_imu = Eigen::Vector3d::Zero();
-  for (std::size_t k = after; k < imu.size(); ++k) {
-    specific_force_imu += imu[k].accel_imu / static_cast<double>(imu.size() - after);
-  }
-  estimation::NavState x = before;
-  x.t_ns = imu[after].t_ns;
-  const Eigen::Matrix3d R = before.R_map_imu.Matrix();
-  const Eigen::Isometry3d levelled = localization::GuessFromGravity(
-      before.p_map_imu, std::atan2(R(1, 0), R(0, 0)), specific_force_imu);
-  x.R_map_imu = lie::SO3d(Eigen::Quaterniond(levelled.rotation()));
-  x.v_map_imu.setZero();
-  estimator_->Initialize(x, options_.initial_uncertainty.MovingCovariance(x));
-  return true;
-}
-
 PointCloud OdometryPipeline::ScanInImu(const MeasurementGroup& group) {
   LidarScan scan = group.scan;
   preprocessor_.Clean(&scan);

@@ -61,6 +61,15 @@ bool Session::failed() const {
   return pipeline_.status() == odometry::OdometryPipeline::Status::kFailed;
 }
 
+void Session::AddImu(const ImuSample& sample) {
+  if (failed()) return;
+  pipeline_.AddImu(sample);
+  if (pipeline_.scans_waiting() == 0) return;
+  std::vector<odometry::ScanResult> fresh;
+  pipeline_.Process(&fresh);
+  Collect(&fresh);
+}
+
 void Session::AddScan(LidarScan scan) {
   if (failed()) return;
   ++scans_added_;

@@ -99,6 +99,52 @@ TEST(ImuPropagation, OneWalkGivesEachTimesOwnPrediction) {
   }
 }
 
+// A state carried forward on the IMU as it arrives (through a lidar gap) is the state the
+// next update would reach from where it was: the walk splits at a sample stamp either way.
+TEST(ImuPropagation, CarryingForwardOnTheWayChangesNothing) {
+  sim::Rng rng(11);
+  std::vector<ImuSample> imu;
+  for (int i = 0; i <= 2400; ++i) {
+    ImuSample s;
+    s.t_ns = int64_t{i} * 5'000'000 + 1'234;
+    s.accel_imu = Eigen::Vector3d(0.3 * rng.Gaussian(), 0.3 * rng.Gaussian(), 9.81);
+    s.gyro_imu = Eigen::Vector3d(0.05 * rng.Gaussian(), 0.05 * rng.Gaussian(), 0.2);
+    imu.push_back(s);
+  }
+  class EmptyMap : public registration::NeighborSearch {
+   public:
+    void KNearest(const Eigen::Vector3f&, int, float,
+                  std::vector<registration::Neighbor>* n) const override { n->clear(); }
+    std::size_t Size() const override { return 0; }
+  } map;
+  const registration::PlaneMatcher matcher(map, registration::PlaneMatcherOptions{});
+  NavState x0;
+  x0.t_ns = 0;
+  x0.v_map_imu = Eigen::Vector3d(1.5, 0.2, 0.0);
+  x0.gravity_map = Eigen::Vector3d(0, 0, -9.81);
+  DeskewedScan scan;
+  scan.t_ns = imu.back().t_ns - 2'000'000;
+  Ieskf whole(EstimatorOptions{}, ImuOptions{}), carried(EstimatorOptions{}, ImuOptions{});
+  whole.Initialize(x0, InitialUncertainty().SlamCovariance());
+  carried.Initialize(x0, InitialUncertainty().SlamCovariance());
+  for (std::size_t i = 0; i < imu.size(); ++i) {
+    whole.AddImu(imu[i]);
+    carried.AddImu(imu[i]);
+    if (i % 60 == 59 && i < 2200) carried.CarryForward(imu[i].t_ns);
+  }
+  EXPECT_EQ(carried.state().t_ns, imu[2159].t_ns);
+  whole.Update(scan, matcher);
+  carried.Update(scan, matcher);
+  EXPECT_EQ(carried.state().t_ns, whole.state().t_ns);
+  EXPECT_TRUE(carried.state().p_map_imu == whole.state().p_map_imu)
+      << carried.state().p_map_imu.transpose() << " vs " << whole.state().p_map_imu.transpose();
+  EXPECT_TRUE(carried.state().v_map_imu == whole.state().v_map_imu);
+  EXPECT_TRUE(carried.state().R_map_imu.Matrix() == whole.state().R_map_imu.Matrix());
+  EXPECT_TRUE(carried.Covariance() == whole.Covariance())
+      << (carried.Covariance() - whole.Covariance()).cwiseAbs().maxCoeff();
+  EXPECT_GT((whole.state().p_map_imu - x0.p_map_imu).norm(), 5.0);  // it did move
+}
+
 TEST(ImuPropagation, CovarianceGrowsWithoutMeasurements) {
   Ieskf filter(EstimatorOptions{}, ImuOptions{});
   NavState x;

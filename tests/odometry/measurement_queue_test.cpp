@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace hylo::odometry {
 namespace {
@@ -60,6 +61,26 @@ TEST(MeasurementQueue, DropsDuplicatesAndStaleDataButKeepsTheRest) {
   EXPECT_EQ(c.scan_duplicates, 1u);
   EXPECT_EQ(c.scan_stale, 1u);
   EXPECT_EQ(queue.pending_imu(), 2u);  // 95 and 100 ms: one bad stamp cleared nothing
+}
+
+TEST(MeasurementQueue, AContinuousStretchOfImuStopsAtASilenceAndIsHandedOut) {
+  MeasurementQueue queue(MeasurementQueueOptions{});
+  for (int64_t t : {10, 20, 30, 40, 300, 310, 320}) queue.AddImu(Imu(t * kMs));
+  // From a state at 5 ms, silences of at most 50 ms, up to 400 ms: 10-40 ms, not past the
+  // 260 ms silence.
+  std::vector<ImuSample> stretch = queue.PopContinuousImu(5 * kMs, 400 * kMs, 50 * kMs);
+  ASSERT_EQ(stretch.size(), 4u);
+  EXPECT_EQ(stretch.back().t_ns, 40 * kMs);
+  // The next stretch cannot begin after a silence from where the last one ended either.
+  EXPECT_TRUE(queue.PopContinuousImu(40 * kMs, 400 * kMs, 50 * kMs).empty());
+  // From a state after the silence, up to 310 ms.
+  stretch = queue.PopContinuousImu(290 * kMs, 310 * kMs, 50 * kMs);
+  ASSERT_EQ(stretch.size(), 2u);
+  EXPECT_EQ(stretch.front().t_ns, 300 * kMs);
+  EXPECT_EQ(queue.pending_imu(), 1u);
+  queue.AddImu(Imu(305 * kMs));  // older than what was handed out: stale
+  EXPECT_EQ(queue.counters().imu_stale, 1u);
+  EXPECT_EQ(queue.pending_imu(), 1u);
 }
 
 TEST(MeasurementQueue, CountsImuGaps) {

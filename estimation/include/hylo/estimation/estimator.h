@@ -107,6 +107,12 @@ class Estimator {
     for (int64_t t : times_ns) states.push_back(PredictAt(t));
     return states;
   }
+  /// Carries the live state forward to `t_ns` on the IMU samples added so far, as the next
+  /// Update would (both split the walk at a sample stamp, so the result is the same), when no
+  /// scan came for a while: a long lidar gap's propagation is then paid as the IMU arrives,
+  /// not all by the first scan after it. Never past a time a scan may still come for. A
+  /// back-end that integrates the IMU only at its updates leaves the state where it is.
+  virtual void CarryForward(int64_t /*t_ns*/) {}
   /// Whether the scans registered from now on join the map the updates search (SLAM; hybrid
   /// mode once started; odometry off a tiled prior), told before each Update; default true.
   /// A back-end whose scans join the map only once finalized (the smoother) then searches its

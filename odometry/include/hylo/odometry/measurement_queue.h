@@ -65,7 +65,15 @@ class MeasurementQueue {
   /// before the first scan, e.g. by the static initialisation).
   std::vector<ImuSample> PopImuUntil(int64_t t_ns);
 
+  /// IMU samples not yet handed out, from the oldest on while each comes within
+  /// `max_silence_ns` of the one before it (the first of `after_ns`) and has a stamp <= t_ns,
+  /// removed from the queue: the stretch a state at `after_ns` can be carried through without
+  /// crossing a silence of the IMU.
+  std::vector<ImuSample> PopContinuousImu(int64_t after_ns, int64_t t_ns, int64_t max_silence_ns);
+
   const QueueCounters& counters() const { return counters_; }
+  /// The newest IMU stamp received (INT64_MIN before any).
+  int64_t newest_imu_ns() const { return newest_imu_ns_; }
   std::size_t pending_scans() const { return scans_.size(); }
   std::size_t pending_imu() const { return imu_.size(); }
 

@@ -95,7 +95,12 @@ class OdometryPipeline {
   explicit OdometryPipeline(const OdometryPipelineOptions& options);
   ~OdometryPipeline();
 
-  void AddImu(const ImuSample& sample) { queue_.AddImu(sample); }
+  /// Queues the sample. When no scan has come for longer than a data gap, the estimator's
+  /// state is carried on with the IMU meanwhile (Estimator::CarryForward), so the first scan
+  /// after a long lidar gap does not pay for the whole gap's propagation.
+  void AddImu(const ImuSample& sample);
+  /// Scans queued and not processed yet (waiting for the IMU to cover their sweep).
+  std::size_t scans_waiting() const { return queue_.pending_scans(); }
   /// The scan's stamps are moved onto the IMU clock here (lidar.time_offset_s).
   void AddScan(LidarScan scan);
 
@@ -156,6 +161,10 @@ class OdometryPipeline {
   PointCloud ScanInImu(const MeasurementGroup& group);  // cleaned, IMU frame
   void AddStaticScan(const MeasurementGroup& group);
   void StartLocalization(const MeasurementGroup& group);
+  // odometry_pipeline_gaps.cpp
+  // No scan for longer than a data gap, the IMU running: the estimator is carried forward on
+  // the samples that no scan can need any more.
+  void CarryThroughLidarGap();
   // Localizing, before the scan ending at `scan_end_ns` with IMU data `imu`, after a gap in
   // both lidar and IMU: restarts the estimator for the supervisor to check (true) instead of
   // tracking from a state propagated blind through the gap.

@@ -64,7 +64,9 @@ class Session {
   }
 
   // --- data, in arrival order ---
-  void AddImu(const ImuSample& sample) { pipeline_.AddImu(sample); }
+  /// Adds an IMU sample; a scan that waited for it (its sweep's end covered) is processed at
+  /// once rather than when the next scan comes.
+  void AddImu(const ImuSample& sample);
   /// Adds a scan and processes every scan that is ready. A failed pipeline takes no more
   /// data (failed() says so; its queue would only grow).
   void AddScan(LidarScan scan);

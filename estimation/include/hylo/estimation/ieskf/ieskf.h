@@ -29,6 +29,9 @@ class Ieskf final : public BackendBase {
 
   void Initialize(const NavState& state, const StateCovariance& covariance) override;
   UpdateSummary Update(const DeskewedScan& scan, const registration::PlaneMatcher& planes) override;
+  void CarryForward(int64_t t_ns) override {
+    if (initialized_ && imu_options_.enabled) Propagate(t_ns);
+  }
   StateCovariance Covariance() const override { return P_; }
   PoseCovariance6 PoseCovariance() const override { return PoseBlock(P_); }
   void Finish() override {}  // every state was final as soon as it was updated
