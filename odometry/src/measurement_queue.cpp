@@ -35,7 +35,13 @@ void MeasurementQueue::AddImu(const ImuSample& sample) {
     ++counters_.imu_saturated;
     return;
   }
-  if (sample.t_ns <= last_imu_out_ns_) {
+  // The stamp of the sample handed out last again is a duplicate (a scan may have just taken
+  // it); older ones are stale.
+  if (sample.t_ns == last_imu_out_ns_) {
+    ++counters_.imu_duplicates;
+    return;
+  }
+  if (sample.t_ns < last_imu_out_ns_) {
     ++counters_.imu_stale;
     return;
   }

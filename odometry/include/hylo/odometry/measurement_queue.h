@@ -29,7 +29,7 @@ struct MeasurementQueueOptions {
 
 /// What the queue dropped or noticed, over the whole run.
 struct QueueCounters {
-  std::size_t imu_duplicates = 0;   ///< same stamp as a buffered sample
+  std::size_t imu_duplicates = 0;   ///< same stamp as a buffered or the last handed-out sample
   std::size_t imu_stale = 0;        ///< older than what was already handed out
   std::size_t scan_duplicates = 0;  ///< same start stamp as a buffered scan
   std::size_t scan_stale = 0;       ///< started before the last handed-out scan
