@@ -55,11 +55,11 @@ def test_seconds_and_float64_points_are_rounded_once(messages, cli_map):
     processed = 0
     for m in messages:
         if isinstance(m, hylo.ImuSample):
-            pipeline.add_imu(np.array([m.t_s]), m.accel[None, :], m.gyro[None, :])
+            processed += pipeline.add_imu(np.array([m.t_s]), m.accel[None, :], m.gyro[None, :])
         else:
             processed += pipeline.add_scan(m.t_s, m.points.astype(np.float64), m.point_times)
     result = pipeline.finish()
-    # add_scan counts what each call processed; finish() processes the rest.
+    # add_imu and add_scan count what each call processed; finish() processes the rest.
     assert 0 < processed <= pipeline.scans_processed == result.summary["scans_processed"]
     assert len(result.trajectory) == 0  # kept nothing
     final = tum(cli_map / "trajectory.tum")[-1]

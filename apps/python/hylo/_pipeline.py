@@ -58,8 +58,8 @@ class Pipeline(_hylo._Pipeline):
     integer stamps instead of t_s.
     add_scan(t_s, points, point_times=None, intensity=None, ring=None): points (N, 3) in the
     lidar frame (float32 read as is, float64 rounded to float), point_times (N,) s after t_s;
-    or a hylo.Scan from read_log. Returns the number of scans this call processed (the pipeline
-    waits for the IMU to cover a scan). Both release the GIL while the pipeline works. A failed
+    or a hylo.Scan from read_log. Both return the number of scans the call processed (a scan
+    waits until the IMU covers it, and is processed by the add_imu call that does). Both release the GIL while the pipeline works. A failed
     pipeline (e.g. the vehicle moved during the IMU initialisation) raises hylo.RunFailed.
     """
 

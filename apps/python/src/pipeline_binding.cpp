@@ -70,8 +70,8 @@ class PipelineHandle {
     session_.SetPriorMap(points, config_.prior_map, start);
   }
 
-  void AddImu(const py::handle& t_s, const py::handle& accel, const py::handle& gyro,
-              const py::handle& t_ns) {
+  std::size_t AddImu(const py::handle& t_s, const py::handle& accel, const py::handle& gyro,
+                     const py::handle& t_ns) {
     std::vector<ImuSample> samples;
     if (py::isinstance<ImuMessage>(t_s)) {
       samples.push_back(t_s.cast<const ImuMessage&>().sample);
@@ -80,7 +80,10 @@ class PipelineHandle {
     }
     py::gil_scoped_release release;
     std::lock_guard<std::mutex> lock(mutex_);
+    const std::size_t before = session_.scans_processed();
     for (const ImuSample& s : samples) session_.AddImu(s);
+    ThrowIfFailed();
+    return session_.scans_processed() - before;
   }
 
   std::size_t AddScan(const py::handle& t_s, const py::handle& points,
