@@ -1,11 +1,11 @@
 #include "hylo/registration/plane_matcher.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "hylo/common/check.h"
+#include "hylo/registration/covariance_eigen.h"
 
 namespace hylo::registration {
 
@@ -47,15 +47,14 @@ bool FitPlane(const std::vector<Neighbor>& points, double planarity_threshold_m,
   const double count = static_cast<double>(points.size());
   const Eigen::Vector3d mean = sum / count;
   const Eigen::Matrix3d cov = outer / count - mean * mean.transpose();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-  eig.computeDirect(cov);
+  Eigen::Vector3d normal, eigenvalues;
+  CovarianceEigen(cov, &normal, &eigenvalues);
   if (spread != nullptr) {
-    spread->across_m = std::sqrt(std::max(eig.eigenvalues()(1), 0.0));
-    spread->along_m = std::sqrt(std::max(eig.eigenvalues()(2), 0.0));
+    spread->across_m = std::sqrt(std::max(eigenvalues(1), 0.0));
+    spread->along_m = std::sqrt(std::max(eigenvalues(2), 0.0));
   }
-  const Eigen::Vector3d normal = eig.eigenvectors().col(0).normalized();
   // A line (two small eigenvalues) has no defined normal.
-  if (!(eig.eigenvalues()(1) > 1e-8) || !normal.allFinite()) return false;
+  if (!(eigenvalues(1) > 1e-8) || !normal.allFinite()) return false;
   const Eigen::Vector3d centroid = ref + mean;
   const double offset = -normal.dot(centroid);
   for (const Neighbor& n : points) {
