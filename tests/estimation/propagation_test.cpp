@@ -12,6 +12,16 @@
 namespace hylo::estimation {
 namespace {
 
+// A map with nothing in it: an Update is then a propagation alone.
+class EmptyMap : public registration::NeighborSearch {
+ public:
+  void KNearest(const Eigen::Vector3f&, int, float,
+                std::vector<registration::Neighbor>* n) const override {
+    n->clear();
+  }
+  std::size_t Size() const override { return 0; }
+};
+
 NavState FromTruth(const sim::KinematicState& s, int64_t t_ns, double g) {
   NavState x;
   x.t_ns = t_ns;
@@ -111,12 +121,7 @@ TEST(ImuPropagation, CarryingForwardOnTheWayChangesNothing) {
     s.gyro_imu = Eigen::Vector3d(0.05 * rng.Gaussian(), 0.05 * rng.Gaussian(), 0.2);
     imu.push_back(s);
   }
-  class EmptyMap : public registration::NeighborSearch {
-   public:
-    void KNearest(const Eigen::Vector3f&, int, float,
-                  std::vector<registration::Neighbor>* n) const override { n->clear(); }
-    std::size_t Size() const override { return 0; }
-  } map;
+  const EmptyMap map;
   const registration::PlaneMatcher matcher(map, registration::PlaneMatcherOptions{});
   NavState x0;
   x0.t_ns = 0;
@@ -158,12 +163,7 @@ TEST(ImuPropagation, CovarianceGrowsWithoutMeasurements) {
   }
   DeskewedScan scan;
   scan.t_ns = 1'000'000'000;
-  class EmptyMap : public registration::NeighborSearch {
-   public:
-    void KNearest(const Eigen::Vector3f&, int, float,
-                  std::vector<registration::Neighbor>* n) const override { n->clear(); }
-    std::size_t Size() const override { return 0; }
-  } map;
+  const EmptyMap map;
   const registration::PlaneMatcher matcher(map, registration::PlaneMatcherOptions{});
   const UpdateSummary summary = filter.Update(scan, matcher);
   EXPECT_FALSE(summary.applied);
