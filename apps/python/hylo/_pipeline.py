@@ -59,8 +59,9 @@ class Pipeline(_hylo._Pipeline):
     add_scan(t_s, points, point_times=None, intensity=None, ring=None): points (N, 3) in the
     lidar frame (float32 read as is, float64 rounded to float), point_times (N,) s after t_s;
     or a hylo.Scan from read_log. Both return the number of scans the call processed (a scan
-    waits until the IMU covers it, and is processed by the add_imu call that does). Both release the GIL while the pipeline works. A failed
-    pipeline (e.g. the vehicle moved during the IMU initialisation) raises hylo.RunFailed.
+    waits until the IMU covers it, and is processed by the add_imu call that does). Both
+    release the GIL while the pipeline works. A failed pipeline (e.g. the vehicle moved during
+    the IMU initialisation) raises hylo.RunFailed.
     """
 
     def __init__(self, config, prior_map=None, guess=None, *, keep_history=True):
