@@ -27,13 +27,16 @@ void OdometryPipeline::CarryThroughLidarGap() {
       queue_.pending_scans() > 0 || !estimator_->initialized()) {
     return;
   }
-  const int64_t usual_ns = scan_clock_.UsualIntervalNs();
-  if (usual_ns == 0) return;
-  // Carried in steps of a data gap (three usual scan intervals): while scans come, never;
-  // through a lidar gap, a few dozen samples at a time, as they arrive.
-  const auto gap_ns = static_cast<int64_t>(ScanIntervalClock::kGapIntervals * usual_ns);
+  // Called for every IMU sample: while scans come the state is well within a second of the
+  // newest sample, and this returns before the usual interval (a median) is computed.
   const int64_t state_ns = estimator_->state().t_ns;
   const int64_t until_ns = queue_.newest_imu_ns() - kScanMayTrailImuNs;
+  if (until_ns <= state_ns) return;
+  const int64_t usual_ns = scan_clock_.UsualIntervalNs();
+  if (usual_ns == 0) return;
+  // Carried in steps of a data gap (three usual scan intervals): through a lidar gap, a few
+  // dozen samples at a time, as they arrive.
+  const auto gap_ns = static_cast<int64_t>(ScanIntervalClock::kGapIntervals * usual_ns);
   if (until_ns - state_ns <= gap_ns) return;
   // Not across a silence of the IMU as long as a data gap: the first scan after it restarts
   // the estimator instead (RestartAfterBlindGap).

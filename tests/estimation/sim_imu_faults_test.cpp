@@ -263,24 +263,24 @@ TEST(SimLidarGap, TheStateCarriedThroughTheGapAsTheImuArrivesIsTheOneTheScanWoul
   const sim::Site site = sim::BuildSite(sim_options.seed, sim_options.terrain);
   const sim::SessionSimulator simulator(sim_options, site, sim::SessionId::kA);
   std::vector<SimRun> runs;
-  std::vector<int64_t> carried_to_s;
+  std::vector<int64_t> carried_to_ns;
   for (const bool hold_imu : {false, true}) {
     PipelineSink pipeline(options);
     LidarGapSink gap(&pipeline, 15, 25, hold_imu);
     simulator.Run(&gap);
-    carried_to_s.push_back(gap.state_before_scan_after_gap_ns() - gap.t0_ns());
+    carried_to_ns.push_back(gap.state_before_scan_after_gap_ns() - gap.t0_ns());
     runs.push_back(pipeline.Finish());
   }
   const SimRun& carried = runs[0];
   const SimRun& reference = runs[1];
   std::printf("state when the first scan after the gap came: %.2f s (carried), %.2f s (held)\n",
-              carried_to_s[0] * 1e-9, carried_to_s[1] * 1e-9);
+              carried_to_ns[0] * 1e-9, carried_to_ns[1] * 1e-9);
   ASSERT_FALSE(carried.failed) << carried.message;
   ASSERT_FALSE(reference.failed) << reference.message;
   // Carried to within a second and a data gap (3 scan intervals) of the gap's end, where the
   // reference's state stayed at the last scan before the gap.
-  EXPECT_GT(carried_to_s[0], 23 * kS);
-  EXPECT_LT(carried_to_s[1], 16 * kS);
+  EXPECT_GT(carried_to_ns[0], 23 * kS);
+  EXPECT_LT(carried_to_ns[1], 16 * kS);
   ASSERT_EQ(carried.results.size(), reference.results.size());
   for (std::size_t k = 0; k < carried.results.size(); ++k) {
     const estimation::NavState& a = carried.results[k].state;
