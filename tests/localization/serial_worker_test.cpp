@@ -1,0 +1,50 @@
+#include "hylo/localization/serial_worker.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <vector>
+
+namespace hylo::localization {
+namespace {
+
+// Jobs run in the order they were posted, on a thread or on the caller's, and an answer waits
+// for every job posted before it.
+TEST(SerialWorker, RunsJobsInOrderAndAnAnswerFollowsThem) {
+  for (const bool on_thread : {false, true}) {
+    SerialWorker worker(on_thread, /*max_queued=*/8);
+    std::vector<int> order;  // touched by the jobs alone until the answer is read
+    for (int i = 0; i < 200; ++i) worker.Post([&order, i] { order.push_back(i); });
+    const std::shared_future<std::size_t> count = worker.Ask([&order] { return order.size(); });
+    ASSERT_EQ(count.get(), 200u) << "on_thread " << on_thread;
+    for (int i = 0; i < 200; ++i) ASSERT_EQ(order[i], i) << "on_thread " << on_thread;
+  }
+}
+
+// A job that throws stops nothing after it: the next answer carries its error, later ones do
+// not.
+TEST(SerialWorker, AJobsErrorReachesTheNextAnswerOnce) {
+  for (const bool on_thread : {false, true}) {
+    SerialWorker worker(on_thread, /*max_queued=*/8);
+    int ran = 0;
+    worker.Post([] { throw std::runtime_error("sweep unreadable"); });
+    worker.Post([&ran] { ++ran; });
+    const std::shared_future<int> first = worker.Ask([&ran] { return ran; });
+    EXPECT_THROW(first.get(), std::runtime_error) << "on_thread " << on_thread;
+    const std::shared_future<int> second = worker.Ask([&ran] { return ran; });
+    EXPECT_EQ(second.get(), 1) << "on_thread " << on_thread;
+  }
+}
+
+// Destroyed with jobs queued, the worker runs them first: what they fill is complete.
+TEST(SerialWorker, DestructionRunsTheQueuedJobs) {
+  std::vector<int> filled;
+  {
+    SerialWorker worker(/*on_thread=*/true, /*max_queued=*/8);
+    for (int i = 0; i < 1000; ++i) worker.Post([&filled, i] { filled.push_back(i); });
+  }
+  EXPECT_EQ(filled.size(), 1000u);
+}
+
+}  // namespace
+}  // namespace hylo::localization
