@@ -33,9 +33,10 @@ int ThisThreadsNiceness() {
 
 }  // namespace
 
-SearchAttempt BackgroundSearch::Run(const PointCloud& cloud_imu, const PointCloud& recent_imu,
-                                    const Eigen::Matrix3d& R_level_imu,
+SearchAttempt BackgroundSearch::Run(const AttemptClouds& clouds, const Eigen::Matrix3d& R_level_imu,
                                     SearchAttempt attempt) const {
+  const PointCloud cloud_imu = clouds.accumulated.Resolve();
+  const PointCloud recent_imu = clouds.recent.Resolve();
   attempt.points = cloud_imu.size();
   if (attempt.T_map_imu_guess) {
     const IcpInitializerResult fit =
@@ -65,20 +66,19 @@ SearchAttempt BackgroundSearch::Run(const PointCloud& cloud_imu, const PointClou
   return attempt;
 }
 
-bool BackgroundSearch::Start(PointCloud cloud_imu, PointCloud recent_imu,
+bool BackgroundSearch::Start(std::shared_future<AttemptClouds> clouds,
                              const Eigen::Matrix3d& R_level_imu, SearchAttempt attempt) {
   if (Busy() || finished_) return false;
   if (!on_worker_) {
-    finished_ = Run(cloud_imu, recent_imu, R_level_imu, std::move(attempt));
+    finished_ = Run(clouds.get(), R_level_imu, std::move(attempt));
     return true;
   }
   const int scan_thread_niceness = ThisThreadsNiceness();
-  running_ = std::async(std::launch::async,
-                        [this, cloud = std::move(cloud_imu), recent = std::move(recent_imu),
-                         R_level_imu, attempt = std::move(attempt), scan_thread_niceness]() {
-                          LowerThisThreadsPriority(scan_thread_niceness);
-                          return Run(cloud, recent, R_level_imu, attempt);
-                        });
+  running_ = std::async(std::launch::async, [this, clouds = std::move(clouds), R_level_imu,
+                                             attempt = std::move(attempt), scan_thread_niceness]() {
+    LowerThisThreadsPriority(scan_thread_niceness);
+    return Run(clouds.get(), R_level_imu, attempt);
+  });
   return true;
 }
 

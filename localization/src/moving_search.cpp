@@ -18,18 +18,24 @@ PointCloud Transformed(const Eigen::Isometry3d& T_to_from, const PointCloud& poi
   return points_to;
 }
 
+// Each waiting job holds a dense sweep (megabytes on a 128-beam head): a computer that cannot
+// keep up with the accumulation makes the scan path wait after about two seconds of sweeps
+// rather than memory grow.
+constexpr std::size_t kMaxSweepsWaiting = 20;
+
 }  // namespace
 
 MovingSearch::MovingSearch(const MovingSearchOptions& options,
                            const mapping::MapManagerOptions& map,
                            const registration::PlaneMatcherOptions& planes, double keep_radius_m,
-                           int recent_scans)
+                           int recent_scans, bool accumulate_on_worker)
     : options_(options),
       keep_radius_m_(keep_radius_m),
       map_(map),
       matcher_(std::make_unique<registration::PlaneMatcher>(map_, planes)),
+      recent_scans_(recent_scans),
       cloud_search_(static_cast<float>(options.voxel_m)),
-      recent_scans_(recent_scans) {}
+      accumulation_(accumulate_on_worker, kMaxSweepsWaiting) {}
 
 void MovingSearch::Begin(const PointCloud& points_imu, const Eigen::Isometry3d& T_search_imu) {
   const PointCloud thinned =
@@ -41,17 +47,22 @@ void MovingSearch::Begin(const PointCloud& points_imu, const Eigen::Isometry3d& 
   attempt_position_ = last_position_;
 }
 
-bool MovingSearch::Add(const PointCloud& sweep_imu, const PointCloud& map_points_search,
+bool MovingSearch::Add(std::function<PointCloud()> sweep_imu, const PointCloud& map_points_search,
                        const Eigen::Isometry3d& T_search_imu, int first_attempt_scans) {
-  const PointCloud thinned =
-      registration::UniformSample(sweep_imu, static_cast<float>(options_.voxel_m));
+  // The scratch map is what the next scan registers against: it grows here. The accumulated
+  // cloud is read by attempts alone, seconds apart: it grows where it costs the scan path
+  // nothing.
   if (!map_points_search.empty()) {
     map_.AddScan(map_points_search, T_search_imu.translation().cast<float>());
   }
-  PointCloud thinned_search = Transformed(T_search_imu, thinned);
-  cloud_search_.Add(thinned_search);
-  recent_search_.push_back(std::move(thinned_search));
-  while (static_cast<int>(recent_search_.size()) > recent_scans_) recent_search_.pop_front();
+  accumulation_.Post([this, sweep_imu = std::move(sweep_imu), T_search_imu] {
+    const PointCloud thinned =
+        registration::UniformSample(sweep_imu(), static_cast<float>(options_.voxel_m));
+    PointCloud thinned_search = Transformed(T_search_imu, thinned);
+    cloud_search_.Add(thinned_search);
+    recent_search_.push_back(std::move(thinned_search));
+    while (static_cast<int>(recent_search_.size()) > recent_scans_) recent_search_.pop_front();
+  });
   ++scans_;
   distance_m_ += (T_search_imu.translation() - last_position_).norm();
   last_position_ = T_search_imu.translation();
@@ -59,31 +70,35 @@ bool MovingSearch::Add(const PointCloud& sweep_imu, const PointCloud& map_points
   return (last_position_ - attempt_position_).norm() >= options_.retry_m;
 }
 
-PointCloud MovingSearch::TakeAttemptCloud(const Eigen::Isometry3d& T_search_imu) {
+std::shared_future<AttemptClouds> MovingSearch::TakeAttemptClouds(
+    const Eigen::Isometry3d& T_search_imu) {
   ++attempts_;
   attempt_position_ = T_search_imu.translation();
-  const Eigen::Vector3f center = T_search_imu.translation().cast<float>();
+  return accumulation_.Ask([this, T_search_imu] {
+    const Eigen::Isometry3d T_imu_search = T_search_imu.inverse();
+    AttemptClouds clouds;
+    clouds.accumulated.points = KeepNear(T_search_imu.translation().cast<float>());
+    clouds.accumulated.T_attempt_from = T_imu_search;
+    for (const PointCloud& sweep : recent_search_) {
+      clouds.recent.points.insert(clouds.recent.points.end(), sweep.begin(), sweep.end());
+    }
+    clouds.recent.T_attempt_from = T_imu_search;
+    return clouds;
+  });
+}
+
+PointCloud MovingSearch::KeepNear(const Eigen::Vector3f& center_search) {
   const float radius_sq = static_cast<float>(keep_radius_m_ * keep_radius_m_);
   PointCloud kept;
   for (const Eigen::Vector3f& p : cloud_search_.points()) {
-    if ((p - center).squaredNorm() <= radius_sq) kept.push_back(p);
+    if ((p - center_search).squaredNorm() <= radius_sq) kept.push_back(p);
   }
   if (kept.size() < cloud_search_.points().size()) {
     registration::UniformSampler cropped(static_cast<float>(options_.voxel_m));
     cropped.Add(kept);
     cloud_search_ = std::move(cropped);
   }
-  return Transformed(T_search_imu.inverse(), kept);
-}
-
-PointCloud MovingSearch::RecentInImu(const Eigen::Isometry3d& T_search_imu) const {
-  const Eigen::Isometry3d T_imu_search = T_search_imu.inverse();
-  PointCloud recent_imu;
-  for (const PointCloud& sweep : recent_search_) {
-    const PointCloud sweep_imu = Transformed(T_imu_search, sweep);
-    recent_imu.insert(recent_imu.end(), sweep_imu.begin(), sweep_imu.end());
-  }
-  return recent_imu;
+  return kept;
 }
 
 bool MovingSearch::GaveUp() const {

@@ -44,7 +44,8 @@ void LocalizationSupervisor::BeginSearch(const estimation::NavState& x,
                                          const PointCloud& points_imu, bool is_start,
                                          int first_attempt_scans, const std::string& reason) {
   search_ = std::make_unique<MovingSearch>(options_.search, search_map_, search_planes_,
-                                           options_.global.max_range_m, options_.init_scans);
+                                           options_.global.max_range_m, options_.init_scans,
+                                           /*accumulate_on_worker=*/options_.search.background);
   search_->Begin(points_imu, lie::ToIsometry(x.T_map_imu()));
   search_is_start_ = is_start;
   search_first_attempt_scans_ = first_attempt_scans;
@@ -58,22 +59,23 @@ void LocalizationSupervisor::BeginSearch(const estimation::NavState& x,
 }
 
 LocalizationSupervisor::SearchStep LocalizationSupervisor::Search(
-    const PointCloud& sweep_imu, const PointCloud& map_points_search,
+    std::function<PointCloud()> sweep_imu, const PointCloud& map_points_search,
     const registration::NeighborSearch& map, estimation::Estimator* estimator, std::string* why) {
   const estimation::NavState x = estimator->state();
   const Eigen::Isometry3d T_search_imu = lie::ToIsometry(x.T_map_imu());
-  const bool due =
-      search_->Add(sweep_imu, map_points_search, T_search_imu, search_first_attempt_scans_);
+  const bool due = search_->Add(std::move(sweep_imu), map_points_search, T_search_imu,
+                                search_first_attempt_scans_);
   if (TakeFinishedAttempt(estimator)) return SearchStep::kLocalized;
   std::optional<Eigen::Isometry3d> guess;
   guess.swap(relocalize_request_);
   const bool attempt_now = due && !Background(map).Busy();
   if (guess || attempt_now) {
     ++scans_initializer_;
-    PointCloud cloud_imu = search_->TakeAttemptCloud(T_search_imu);
+    std::shared_future<AttemptClouds> clouds = search_->TakeAttemptClouds(T_search_imu);
     if (guess) {
       // A user's pose (e.g. ROS /initialpose) is judged as given, on the longer cloud.
-      const IcpInitializerResult icp = icp_initializer_.Initialize(cloud_imu, map, *guess);
+      const IcpInitializerResult icp =
+          icp_initializer_.Initialize(clouds.get().accumulated.Resolve(), map, *guess);
       if (icp.accepted) {
         EndSearch(icp.T_map_imu, estimator, "requested pose accepted: " + icp.message, icp);
         return SearchStep::kLocalized;
@@ -88,8 +90,7 @@ LocalizationSupervisor::SearchStep LocalizationSupervisor::Search(
       attempt.attempt = search_->attempts();
       attempt.distance_m = search_->distance_m();
       attempt.scans = search_->scans();
-      background_->Start(std::move(cloud_imu), search_->RecentInImu(T_search_imu),
-                         LevellingRotation(T_search_imu.linear()), attempt);
+      background_->Start(std::move(clouds), LevellingRotation(T_search_imu.linear()), attempt);
       // On the scan thread the attempt has finished: its verdict is applied at once.
       if (TakeFinishedAttempt(estimator)) return SearchStep::kLocalized;
     }
@@ -124,7 +125,9 @@ void LocalizationSupervisor::StartAttempt(const PointCloud& sweep_imu,
   // The search frame begins where the vehicle was lost: the guess is the vehicle's pose in it.
   attempt.T_search_imu = T_map_imu_guess;
   attempt.t_ns = search_t_ns_;
-  Background(map).Start(sweep_imu, PointCloud(), LevellingRotation(T_map_imu_guess.linear()),
+  AttemptClouds sweep;
+  sweep.accumulated.points = sweep_imu;
+  Background(map).Start(Ready(std::move(sweep)), LevellingRotation(T_map_imu_guess.linear()),
                         std::move(attempt));
 }
 

@@ -293,8 +293,15 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
         result->update.applied
             ? Transformed(result->state.T_map_lidar(), scan.registration.points_lidar)
             : PointCloud();
-    const auto step =
-        supervisor_->Search(sweep_imu(), map_points_search, map_, estimator_.get(), &why);
+    // The search's copy of the whole sweep is undistorted where the search accumulates its
+    // scans: off the scan path when it searches in the background. The dense returns are not
+    // needed here after this.
+    auto dense_sweep_imu = [cleaned = std::move(scan.cleaned), motion = scan.motion,
+                            T_imu_lidar = result->state.T_imu_lidar] {
+      return Transformed(T_imu_lidar, motion.ToSweepEnd(cleaned));
+    };
+    const auto step = supervisor_->Search(std::move(dense_sweep_imu), map_points_search, map_,
+                                          estimator_.get(), &why);
     if (step == localization::LocalizationSupervisor::SearchStep::kGaveUp) Fail(why);
     // The search frame's states are not the map's: none is finalized into a trajectory.
     std::vector<estimation::NavState> search_frame_states;

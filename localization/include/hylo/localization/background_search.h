@@ -17,6 +17,7 @@
 #include <optional>
 
 #include "hylo/common/point_types.h"
+#include "hylo/localization/attempt_cloud.h"
 #include "hylo/localization/global_search.h"
 #include "hylo/localization/icp_initializer.h"
 #include "hylo/registration/neighbor_search.h"
@@ -60,16 +61,17 @@ class BackgroundSearch {
   BackgroundSearch(const BackgroundSearch&) = delete;
   BackgroundSearch& operator=(const BackgroundSearch&) = delete;
 
-  /// Starts an attempt on `cloud_imu` (IMU frame at `attempt.T_search_imu`) levelled by
-  /// `R_level_imu`; `attempt` carries its bookkeeping. With `attempt.T_map_imu_guess` the
-  /// cloud is only fitted around that pose (`around_guess`), nothing else is tried. Otherwise,
-  /// when that cloud places nothing, `recent_imu` (the last scans alone, same frame) is tried:
-  /// the accumulated cloud is the more telling one while the provisional odometry holds, the
+  /// Starts an attempt on `clouds.accumulated` (moved where the attempt runs into the IMU
+  /// frame at `attempt.T_search_imu`, once the future is ready) levelled by `R_level_imu`;
+  /// `attempt` carries its bookkeeping. With `attempt.T_map_imu_guess` the cloud is only fitted
+  /// around that pose (`around_guess`), nothing else is tried. Otherwise, when that cloud
+  /// places nothing, `clouds.recent` (the last scans alone, same frame) is tried: the
+  /// accumulated cloud is the more telling one while the provisional odometry holds, the
   /// recent scans carry little of its drift when it does not. An accepted place is refined on
-  /// `recent_imu` (the refiner's ICP), so that the scan thread only composes the verdict with
-  /// the odometry since the attempt's scan. False while an attempt runs or its verdict is not
-  /// taken.
-  bool Start(PointCloud cloud_imu, PointCloud recent_imu, const Eigen::Matrix3d& R_level_imu,
+  /// the recent scans (the refiner's ICP), so that the scan thread only composes the verdict
+  /// with the odometry since the attempt's scan. False while an attempt runs or its verdict
+  /// is not taken.
+  bool Start(std::shared_future<AttemptClouds> clouds, const Eigen::Matrix3d& R_level_imu,
              SearchAttempt attempt);
   /// True while an attempt runs.
   bool Busy() const;
@@ -78,8 +80,8 @@ class BackgroundSearch {
 
  private:
   // The attempt: the accumulated cloud, then the recent scans when it places nothing.
-  SearchAttempt Run(const PointCloud& cloud_imu, const PointCloud& recent_imu,
-                    const Eigen::Matrix3d& R_level_imu, SearchAttempt attempt) const;
+  SearchAttempt Run(const AttemptClouds& clouds, const Eigen::Matrix3d& R_level_imu,
+                    SearchAttempt attempt) const;
   void Wait();
 
   const GlobalSearch& search_;

@@ -38,7 +38,8 @@ struct MovingSearchOptions {
                                 ///< for as long as the vehicle moves, >= 0
   double voxel_m = 0.2;         ///< the accumulated cloud keeps one point per voxel, m, > 0
   /// Each global attempt runs on a worker thread while the scans go on being tracked in the
-  /// provisional frame (background_search.h): a live vehicle's scan path is not stalled by a
+  /// provisional frame (background_search.h), and the scans the attempts look at are
+  /// accumulated on another (moving_search.h): a live vehicle's scan path is not stalled by a
   /// search. Off, an attempt runs on the scan thread, and a log read from a file gives the
   /// same result on every run whatever the machine's load. Not with a tiled prior (its tiles
   /// change under the scan thread): attempts then run on the scan thread. The ROS node always

@@ -82,13 +82,14 @@ class LocalizationSupervisor {
   bool searching() const { return search_ != nullptr; }
   const registration::PlaneMatcher& search_matcher() const { return search_->matcher(); }
   enum class SearchStep { kSearching, kLocalized, kGaveUp };
-  /// After an update in the search frame: accumulates the scan (`sweep_imu`, the whole
-  /// deskewed scan in the IMU frame at the estimator's state; `map_points_search`, the points
-  /// odometry adds to its map, search frame, empty when the update failed) and, when due,
-  /// tries the global localizer on the longer cloud against `map` (the prior). kLocalized:
+  /// After an update in the search frame: accumulates the scan (`sweep_imu` makes the whole
+  /// deskewed scan in the IMU frame at the estimator's state, off the scan path with
+  /// options.search.background; `map_points_search`, the points odometry adds to its map,
+  /// search frame, empty when the update failed) and, when due, tries the global localizer
+  /// on the longer cloud against `map` (the prior). kLocalized:
   /// `estimator` was started again at the accepted pose in the map. kGaveUp: max_distance_m
   /// travelled, the reason in *why.
-  SearchStep Search(const PointCloud& sweep_imu, const PointCloud& map_points_search,
+  SearchStep Search(std::function<PointCloud()> sweep_imu, const PointCloud& map_points_search,
                     const registration::NeighborSearch& map, estimation::Estimator* estimator,
                     std::string* why);
 
