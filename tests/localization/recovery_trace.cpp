@@ -33,7 +33,7 @@ void WriteRecoveryTrace(const RecoveryRun& run, const DriveTruth& truth, const s
   const auto since_return_s = [&](int64_t t_ns) { return NanosToSeconds(t_ns - c.return_t_ns); };
   scans << "t_s,status,x_m,y_m,z_m,true_x_m,true_y_m,true_z_m,error_m,speed_mps,true_speed_mps,"
            "inlier_ratio,matches,update_applied,wall_ms,cpu_ms,tilt_error_deg,deskew_ms,update_ms,"
-           "map_ms\n";
+           "map_ms,iterations\n";
   for (const odometry::ScanResult& r : run.session().results()) {
     const Eigen::Vector3d p = r.state.p_map_imu;
     const Eigen::Vector3d truth_map = truth.PoseAt(r.t_ns).translation() - run.origin_world();
@@ -43,7 +43,8 @@ void WriteRecoveryTrace(const RecoveryRun& run, const DriveTruth& truth, const s
           << ',' << truth.SpeedAt(r.t_ns) << ',' << r.health.inlier_ratio << ','
           << r.health.num_matches << ',' << r.update.applied << ',' << r.total_ms << ','
           << r.cpu_ms << ',' << TiltErrorDeg(r.state.R_map_imu.Matrix(), truth.PoseAt(r.t_ns).linear())
-          << ',' << r.deskew_ms << ',' << r.update_ms << ',' << r.map_ms << '\n';
+          << ',' << r.deskew_ms << ',' << r.update_ms << ',' << r.map_ms << ','
+          << r.update.iterations << '\n';
   }
   for (const localization::LocalizationEvent& e : run.session().pipeline().events()) {
     const Eigen::Vector3d truth_map = truth.PoseAt(e.t_ns).translation() - run.origin_world();
