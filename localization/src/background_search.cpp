@@ -1,35 +1,16 @@
 #include "hylo/localization/background_search.h"
 
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
-
-#include <algorithm>
-#include <cerrno>
 #include <chrono>
 #include <utility>
+
+#include "thread_niceness.h"
 
 namespace hylo::localization {
 namespace {
 
-// Below the scan thread: on a loaded computer the tracking keeps its share of the CPU and the
-// attempt takes what is left. Relative to the thread that starts it (which runs at the scan
-// thread's niceness): an absolute value would, in a process started with `nice -n 19` by a
-// privileged user, raise the worker above the scan thread. Best effort, capped at 19.
-constexpr int kWorkerNicenessAbove = 10;
-constexpr int kMaxNiceness = 19;
-
-void LowerThisThreadsPriority(int scan_thread_niceness) {
-  const auto tid = static_cast<id_t>(syscall(SYS_gettid));
-  const int niceness = std::min(scan_thread_niceness + kWorkerNicenessAbove, kMaxNiceness);
-  setpriority(PRIO_PROCESS, tid, niceness);
-}
-
-int ThisThreadsNiceness() {
-  errno = 0;  // getpriority may return -1 as a niceness
-  const int niceness = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
-  return errno == 0 ? niceness : 0;
-}
+// Below the scan thread and the search's accumulation (moving_search.cpp): on a loaded
+// computer the tracking keeps its share of the CPU and the attempt takes what is left.
+constexpr int kAttemptNicenessBelowScanThread = 10;
 
 }  // namespace
 
@@ -76,7 +57,7 @@ bool BackgroundSearch::Start(std::shared_future<AttemptClouds> clouds,
   const int scan_thread_niceness = ThisThreadsNiceness();
   running_ = std::async(std::launch::async, [this, clouds = std::move(clouds), R_level_imu,
                                              attempt = std::move(attempt), scan_thread_niceness]() {
-    LowerThisThreadsPriority(scan_thread_niceness);
+    LowerThisThreadsPriority(scan_thread_niceness, kAttemptNicenessBelowScanThread);
     return Run(clouds.get(), R_level_imu, attempt);
   });
   return true;

@@ -1,10 +1,10 @@
 // Searching while moving (moving_search.h): the scratch map, the accumulated cloud and when to
 // try the global localizer again.
+#include "hylo/localization/moving_search.h"
+
 #include <optional>
 #include <sstream>
 #include <utility>
-
-#include "hylo/localization/moving_search.h"
 
 namespace hylo::localization {
 namespace {
@@ -22,6 +22,10 @@ PointCloud Transformed(const Eigen::Isometry3d& T_to_from, const PointCloud& poi
 // keep up with the accumulation makes the scan path wait after about two seconds of sweeps
 // rather than memory grow.
 constexpr std::size_t kMaxSweepsWaiting = 20;
+// Below the scan thread, which it would otherwise take CPU from on a small computer (on two
+// cores, with an attempt running, searching scans lost up to 12 ms of a ~15 ms scan to it);
+// above the attempts (background_search.cpp), which wait for its clouds.
+constexpr int kAccumulationNicenessBelowScanThread = 5;
 
 }  // namespace
 
@@ -35,7 +39,8 @@ MovingSearch::MovingSearch(const MovingSearchOptions& options,
       matcher_(std::make_unique<registration::PlaneMatcher>(map_, planes)),
       recent_scans_(recent_scans),
       cloud_search_(static_cast<float>(options.voxel_m)),
-      accumulation_(accumulate_on_worker, kMaxSweepsWaiting) {}
+      accumulation_(accumulate_on_worker, kMaxSweepsWaiting, kAccumulationNicenessBelowScanThread) {
+}
 
 void MovingSearch::Begin(const PointCloud& points_imu, const Eigen::Isometry3d& T_search_imu) {
   const PointCloud thinned =

@@ -2,11 +2,16 @@
 
 #include <algorithm>
 
+#include "thread_niceness.h"
+
 namespace hylo::localization {
 
-SerialWorker::SerialWorker(bool on_thread, std::size_t max_queued)
+SerialWorker::SerialWorker(bool on_thread, std::size_t max_queued, int niceness_below)
     : max_queued_(std::max<std::size_t>(max_queued, 1)) {
-  if (on_thread) thread_ = std::thread([this] { Loop(); });
+  if (!on_thread) return;
+  const int starter_niceness = ThisThreadsNiceness();
+  thread_ = std::thread(
+      [this, starter_niceness, niceness_below] { Loop(starter_niceness, niceness_below); });
 }
 
 SerialWorker::~SerialWorker() {
@@ -40,7 +45,8 @@ void SerialWorker::Run(const std::function<void()>& job) {
   }
 }
 
-void SerialWorker::Loop() {
+void SerialWorker::Loop(int starter_niceness, int niceness_below) {
+  if (niceness_below > 0) LowerThisThreadsPriority(starter_niceness, niceness_below);
   for (;;) {
     std::function<void()> job;
     {

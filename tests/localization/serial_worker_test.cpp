@@ -12,7 +12,7 @@ namespace {
 // for every job posted before it.
 TEST(SerialWorker, RunsJobsInOrderAndAnAnswerFollowsThem) {
   for (const bool on_thread : {false, true}) {
-    SerialWorker worker(on_thread, /*max_queued=*/8);
+    SerialWorker worker(on_thread, /*max_queued=*/8, /*niceness_below=*/0);
     std::vector<int> order;  // touched by the jobs alone until the answer is read
     for (int i = 0; i < 200; ++i) worker.Post([&order, i] { order.push_back(i); });
     const std::shared_future<std::size_t> count = worker.Ask([&order] { return order.size(); });
@@ -25,7 +25,7 @@ TEST(SerialWorker, RunsJobsInOrderAndAnAnswerFollowsThem) {
 // not.
 TEST(SerialWorker, AJobsErrorReachesTheNextAnswerOnce) {
   for (const bool on_thread : {false, true}) {
-    SerialWorker worker(on_thread, /*max_queued=*/8);
+    SerialWorker worker(on_thread, /*max_queued=*/8, /*niceness_below=*/0);
     int ran = 0;
     worker.Post([] { throw std::runtime_error("sweep unreadable"); });
     worker.Post([&ran] { ++ran; });
@@ -40,7 +40,7 @@ TEST(SerialWorker, AJobsErrorReachesTheNextAnswerOnce) {
 TEST(SerialWorker, DestructionRunsTheQueuedJobs) {
   std::vector<int> filled;
   {
-    SerialWorker worker(/*on_thread=*/true, /*max_queued=*/8);
+    SerialWorker worker(/*on_thread=*/true, /*max_queued=*/8, /*niceness_below=*/0);
     for (int i = 0; i < 1000; ++i) worker.Post([&filled, i] { filled.push_back(i); });
   }
   EXPECT_EQ(filled.size(), 1000u);

@@ -20,8 +20,9 @@ namespace hylo::localization {
 class SerialWorker {
  public:
   /// `on_thread` false: each job runs inside Post or Ask, on the caller's thread. At most
-  /// `max_queued` (>= 1) jobs wait at a time.
-  SerialWorker(bool on_thread, std::size_t max_queued);
+  /// `max_queued` (>= 1) jobs wait at a time. The thread runs `niceness_below` steps of
+  /// niceness below the constructing thread (best effort; 0: at its priority).
+  SerialWorker(bool on_thread, std::size_t max_queued, int niceness_below);
   /// Runs the jobs still queued, then joins.
   ~SerialWorker();
   SerialWorker(const SerialWorker&) = delete;
@@ -45,7 +46,7 @@ class SerialWorker {
 
  private:
   void Run(const std::function<void()>& job);
-  void Loop();
+  void Loop(int starter_niceness, int niceness_below);
 
   const std::size_t max_queued_;
   std::mutex mutex_;
