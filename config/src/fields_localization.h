@@ -102,7 +102,8 @@ void VisitFields(V& v, localization::MovingSearchOptions& o) {
     "give up after this travel, m (0 = search for as long as the vehicle moves; >= 0)");
   v("voxel_m", o.voxel_m, "the accumulated cloud keeps one point per voxel of this edge, m (> 0)");
   v("background", o.background,
-    "global attempts run on a worker thread while tracking goes on (the ROS node always); "
+    "global attempts (and the gathering of the scans they look at) run on worker threads while "
+    "tracking goes on (the ROS node always); "
     "false: on the scan thread, the same result on every run of a log");
 }
 
