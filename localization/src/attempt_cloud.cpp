@@ -2,16 +2,11 @@
 
 #include <utility>
 
+#include "hylo/common/transformed_cloud.h"
+
 namespace hylo::localization {
 
-PointCloud AttemptCloud::Resolve() const {
-  PointCloud points_attempt;
-  points_attempt.reserve(points.size());
-  for (const Eigen::Vector3f& p : points) {
-    points_attempt.push_back((T_attempt_from * p.cast<double>()).cast<float>());
-  }
-  return points_attempt;
-}
+PointCloud AttemptCloud::Resolve() const { return Transformed(T_attempt_from, points); }
 
 std::shared_future<AttemptClouds> Ready(AttemptClouds clouds) {
   std::promise<AttemptClouds> ready;

@@ -6,17 +6,10 @@
 #include <sstream>
 #include <utility>
 
+#include "hylo/common/transformed_cloud.h"
+
 namespace hylo::localization {
 namespace {
-
-PointCloud Transformed(const Eigen::Isometry3d& T_to_from, const PointCloud& points_from) {
-  PointCloud points_to;
-  points_to.reserve(points_from.size());
-  for (const Eigen::Vector3f& p : points_from) {
-    points_to.push_back((T_to_from * p.cast<double>()).cast<float>());
-  }
-  return points_to;
-}
 
 // Each waiting job holds a dense sweep (megabytes on a 128-beam head): a computer that cannot
 // keep up with the accumulation makes the scan path wait after about two seconds of sweeps

@@ -12,6 +12,7 @@
 #include "hylo/common/check.h"
 #include "hylo/common/option_checks.h"
 #include "hylo/common/time.h"
+#include "hylo/common/transformed_cloud.h"
 #include "hylo/lie/isometry.h"
 
 namespace hylo::odometry {
@@ -35,15 +36,6 @@ double CpuMs(clockid_t clock = CLOCK_THREAD_CPUTIME_ID) {
 double MsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
       .count();
-}
-
-PointCloud Transformed(const lie::SE3d& T_to_from, const PointCloud& points_from) {
-  PointCloud points_to;
-  points_to.reserve(points_from.size());
-  for (const Eigen::Vector3f& p : points_from) {
-    points_to.push_back((T_to_from * p.cast<double>()).cast<float>());
-  }
-  return points_to;
 }
 
 }  // namespace
