@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <future>
 #include <stdexcept>
 #include <vector>
 
@@ -44,6 +46,28 @@ TEST(SerialWorker, DestructionRunsTheQueuedJobs) {
     for (int i = 0; i < 1000; ++i) worker.Post([&filled, i] { filled.push_back(i); });
   }
   EXPECT_EQ(filled.size(), 1000u);
+}
+
+// With the thread held on a job and the queue full, Post waits; it returns once the held job
+// ends and there is room again, and the jobs still run in order.
+TEST(SerialWorker, PostWaitsForRoomWhenTheQueueIsFull) {
+  std::promise<void> release;
+  const std::shared_future<void> released = release.get_future().share();
+  std::vector<int> order;  // touched by the jobs alone until the answer is read
+  SerialWorker worker(/*on_thread=*/true, /*max_queued=*/1, /*niceness_below=*/0);
+  worker.Post([&order, released] {
+    released.wait();
+    order.push_back(0);
+  });
+  worker.Post([&order] { order.push_back(1); });  // fills the one place (once job 0 is taken)
+  std::future<void> third = std::async(std::launch::async, [&worker, &order] {
+    worker.Post([&order] { order.push_back(2); });
+  });
+  // A Post that did not wait would return at once; this one cannot until job 0 is released.
+  EXPECT_EQ(third.wait_for(std::chrono::milliseconds(200)), std::future_status::timeout);
+  release.set_value();
+  third.get();
+  EXPECT_EQ(worker.Ask([&order] { return order; }).get(), (std::vector<int>{0, 1, 2}));
 }
 
 }  // namespace
