@@ -38,6 +38,13 @@ double MsSince(std::chrono::steady_clock::time_point start) {
       .count();
 }
 
+// The whole sweep undistorted to its end, in the IMU frame: what recovery accumulates and
+// places in the map.
+PointCloud SweepImu(const estimation::SweepMotion& motion, const LidarScan& cleaned,
+                    const lie::SE3d& T_imu_lidar) {
+  return Transformed(T_imu_lidar, motion.ToSweepEnd(cleaned));
+}
+
 }  // namespace
 
 bool PipelineOutputOptions::IsValid(std::string* why) const {
@@ -274,7 +281,7 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
   result->pose_covariance = estimator_->PoseCovariance();
   result->health = localization::EvaluateScanHealth(result->update, options_.localization);
   const auto sweep_imu = [&] {
-    return Transformed(estimator_->state().T_imu_lidar, preprocessor_.Deskewed(scan, 0.0));
+    return SweepImu(scan.motion, scan.cleaned, estimator_->state().T_imu_lidar);
   };
   if (searching) {
     // No place in the map yet: the scan is registered in the search frame, its result is
@@ -286,11 +293,11 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
             ? Transformed(result->state.T_map_lidar(), scan.registration.points_lidar)
             : PointCloud();
     // The search's copy of the whole sweep is undistorted where the search accumulates its
-    // scans: off the scan path when it searches in the background. The dense returns are not
-    // needed here after this.
+    // scans: off the scan path when it searches in the background. It owns the dense returns,
+    // which are not needed here after this.
     auto dense_sweep_imu = [cleaned = std::move(scan.cleaned), motion = scan.motion,
                             T_imu_lidar = result->state.T_imu_lidar] {
-      return Transformed(T_imu_lidar, motion.ToSweepEnd(cleaned));
+      return SweepImu(motion, cleaned, T_imu_lidar);
     };
     const auto step = supervisor_->Search(std::move(dense_sweep_imu), map_points_search, map_,
                                           estimator_.get(), &why);
