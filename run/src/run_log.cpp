@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "hylo/common/time.h"
 #include "hylo/config/config_json.h"
@@ -119,33 +121,55 @@ io::Json OnlineCalibrationJson(const estimation::OnlineCalibration& c,
     j["extrinsic_rotation_sigma_deg"] =
         io::Json::array({s.x() * kDegPerRad, s.y() * kDegPerRad, s.z() * kDegPerRad});
   }
+  if (c.extrinsic_translation_estimated) {
+    const Eigen::Vector3d& t = c.extrinsic_translation_correction_m;
+    const Eigen::Vector3d& s = c.extrinsic_translation_sigma_m;
+    j["extrinsic_translation_correction_m"] = io::Json::array({t.x(), t.y(), t.z()});
+    j["extrinsic_translation_sigma_m"] = io::Json::array({s.x(), s.y(), s.z()});
+  }
   return j;
 }
+
+namespace {
+
+// "[a, b, c] unit (sigma [d, e, f])" of a summary's vector and its sigmas, at `decimals`.
+std::string VectorWithSigma(const io::Json& values, const io::Json& sigmas, const char* unit,
+                            int decimals) {
+  char buffer[160];
+  std::snprintf(buffer, sizeof(buffer), "[%.*f, %.*f, %.*f] %s (sigma [%.*f, %.*f, %.*f])",
+                decimals, values.at(0).get<double>(), decimals, values.at(1).get<double>(),
+                decimals, values.at(2).get<double>(), unit, decimals, sigmas.at(0).get<double>(),
+                decimals, sigmas.at(1).get<double>(), decimals, sigmas.at(2).get<double>());
+  return buffer;
+}
+
+}  // namespace
 
 std::string OnlineCalibrationLine(const io::Json& summary) {
   if (!summary.contains("online_calibration")) return "";
   const io::Json& c = summary.at("online_calibration");
-  std::string line = "online calibration (sigma from the window, optimistic):";
-  char buffer[160];
+  std::vector<std::string> parts;
   if (c.contains("lidar_time_offset_s")) {
+    char buffer[160];
     std::snprintf(buffer, sizeof(buffer),
-                  " lidar.time_offset_s %.4f s (correction %+.1f ms, sigma %.1f ms)",
+                  "lidar.time_offset_s %.4f s (correction %+.1f ms, sigma %.1f ms)",
                   c.at("lidar_time_offset_s").get<double>(),
                   1e3 * c.at("time_offset_correction_s").get<double>(),
                   1e3 * c.at("time_offset_sigma_s").get<double>());
-    line += buffer;
+    parts.push_back(buffer);
   }
   if (c.contains("extrinsic_rotation_correction_deg")) {
-    const io::Json& r = c.at("extrinsic_rotation_correction_deg");
-    const io::Json& sigma = c.at("extrinsic_rotation_sigma_deg");
-    std::snprintf(
-        buffer, sizeof(buffer),
-        "%s extrinsic rotation correction [%.2f, %.2f, %.2f] deg (sigma [%.2f, %.2f, %.2f])",
-        c.contains("lidar_time_offset_s") ? ";" : "", r.at(0).get<double>(), r.at(1).get<double>(),
-        r.at(2).get<double>(), sigma.at(0).get<double>(), sigma.at(1).get<double>(),
-        sigma.at(2).get<double>());
-    line += buffer;
+    parts.push_back("extrinsic rotation correction " +
+                    VectorWithSigma(c.at("extrinsic_rotation_correction_deg"),
+                                    c.at("extrinsic_rotation_sigma_deg"), "deg", 2));
   }
+  if (c.contains("extrinsic_translation_correction_m")) {
+    parts.push_back("extrinsic translation correction " +
+                    VectorWithSigma(c.at("extrinsic_translation_correction_m"),
+                                    c.at("extrinsic_translation_sigma_m"), "m", 3));
+  }
+  std::string line = "online calibration (sigma from the estimator, optimistic):";
+  for (std::size_t i = 0; i < parts.size(); ++i) line += (i == 0 ? " " : "; ") + parts[i];
   return line;
 }
 
@@ -293,7 +317,8 @@ RunResult RunLog(const RunRequest& request) {
                                {"provisional", by_status[2]}};
   j["counters"] = PipelineCountersJson(pipeline.counters());
   const estimation::OnlineCalibration calibration = pipeline.estimator().Calibration();
-  if (calibration.time_offset_estimated || calibration.extrinsic_rotation_estimated) {
+  if (calibration.time_offset_estimated || calibration.extrinsic_rotation_estimated ||
+      calibration.extrinsic_translation_estimated) {
     j["online_calibration"] =
         OnlineCalibrationJson(calibration, config.pipeline.lidar.time_offset_s);
   }

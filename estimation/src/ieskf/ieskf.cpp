@@ -9,8 +9,33 @@ namespace hylo::estimation {
 using namespace state_index;  // NOLINT: index names only
 
 void Ieskf::Initialize(const NavState& state, const StateCovariance& covariance) {
+  // Restarts (relocalization, a search, a data gap) pass the filter's own state on: the
+  // extrinsic they carry is the estimate, not the configuration.
+  if (!initialized_) T_imu_lidar_configured_ = state.T_imu_lidar;
   Restart(state);
   P_ = 0.5 * (covariance + covariance.transpose());
+}
+
+OnlineCalibration Ieskf::Calibration() const {
+  OnlineCalibration c;
+  if (!options_.ieskf.online_extrinsic || !initialized_) return c;
+  // The filter perturbs on the right (R ⊞ δ = R·Exp(δ)); the report's correction is on the
+  // left (R = Exp(c)·R_configured), so the rotation's covariance is turned by R: c ≈ R·δ.
+  const lie::SO3d& R = state_.T_imu_lidar.so3();
+  const Eigen::Matrix3d R_m = R.Matrix();
+  const Eigen::Matrix3d rotation_covariance =
+      R_m * P_.block<3, 3>(kExtrinsicRotation, kExtrinsicRotation) * R_m.transpose();
+  c.extrinsic_rotation_estimated = true;
+  c.extrinsic_rotation_correction_rad = (R * T_imu_lidar_configured_.so3().Inverse()).Log();
+  c.extrinsic_rotation_sigma_rad = rotation_covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
+  c.extrinsic_translation_estimated = true;
+  c.extrinsic_translation_correction_m =
+      state_.T_imu_lidar.translation() - T_imu_lidar_configured_.translation();
+  c.extrinsic_translation_sigma_m = P_.block<3, 3>(kExtrinsicTranslation, kExtrinsicTranslation)
+                                        .diagonal()
+                                        .cwiseMax(0.0)
+                                        .cwiseSqrt();
+  return c;
 }
 
 void Ieskf::Propagate(int64_t t_ns) {

@@ -67,7 +67,8 @@ struct UpdateSummary {
 
 /// What a back-end estimated online of the sensor set-up's calibration: corrections to the
 /// configured values, each with its standard deviation from the estimator's information.
-/// Nothing is estimated unless the configuration asks (sliding_window.estimate_*).
+/// Nothing is estimated unless the configuration asks (sliding_window.estimate_*,
+/// ieskf.online_extrinsic).
 struct OnlineCalibration {
   bool time_offset_estimated = false;
   /// Add to the configured lidar.time_offset_s: a scan stamped t (lidar clock) was taken at
@@ -78,6 +79,10 @@ struct OnlineCalibration {
   /// R_imu_lidar = Exp(correction) · R_imu_lidar(configured): rotation vector, IMU frame, rad.
   Eigen::Vector3d extrinsic_rotation_correction_rad = Eigen::Vector3d::Zero();
   Eigen::Vector3d extrinsic_rotation_sigma_rad = Eigen::Vector3d::Zero();
+  bool extrinsic_translation_estimated = false;
+  /// t_imu_lidar = configured + correction: IMU frame, m.
+  Eigen::Vector3d extrinsic_translation_correction_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d extrinsic_translation_sigma_m = Eigen::Vector3d::Zero();
 };
 
 class Estimator {

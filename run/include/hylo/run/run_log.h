@@ -75,12 +75,13 @@ io::Json PipelineCountersJson(const odometry::PipelineCounters& counters);
 
 /// What the back-end calibrated online, as the `online_calibration` object of summary.json:
 /// the clock-offset correction, its sigma and the offset to configure (lidar.time_offset_s),
-/// the extrinsic rotation correction (rotation vector, IMU frame) and its sigmas, in degrees.
+/// the extrinsic rotation correction (rotation vector, IMU frame) and its sigmas, in degrees,
+/// and the extrinsic translation correction (IMU frame) and its sigmas, in metres.
 io::Json OnlineCalibrationJson(const estimation::OnlineCalibration& calibration,
                                double configured_time_offset_s);
 
 /// The `online_calibration` of a run's summary as one line for the user ("" when there is
-/// none): the offset to configure and the rotation correction, each with its sigma.
+/// none): the offset to configure and the extrinsic corrections, each with its sigma.
 std::string OnlineCalibrationLine(const io::Json& summary);
 
 /// A damaged log's recovery as the `log.recovery` object of summary.json (and `hylo info`).

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "hylo/estimation/backend_base.h"
+#include "hylo/lie/se3.h"
 #include "hylo/registration/point_to_plane.h"
 
 namespace hylo::estimation {
@@ -35,6 +36,9 @@ class Ieskf final : public BackendBase {
   StateCovariance Covariance() const override { return P_; }
   PoseCovariance6 PoseCovariance() const override { return PoseBlock(P_); }
   void Finish() override {}  // every state was final as soon as it was updated
+  /// With ieskf.online_extrinsic: the filter's T_imu_lidar against the one it first started
+  /// from (the configuration's; later starts carry the estimate on), its sigma from P.
+  OnlineCalibration Calibration() const override;
 
  private:
   // Normal equations of the lidar residuals over the compact 12 columns.
@@ -55,6 +59,8 @@ class Ieskf final : public BackendBase {
   int ActiveDim() const;
 
   StateCovariance P_ = StateCovariance::Identity();
+  lie::SE3d T_imu_lidar_configured_;  // the first Initialize's
+
   std::vector<registration::Plane> planes_;  // per scan point, valid where matched_[i]
   std::vector<char> matched_;
 };
