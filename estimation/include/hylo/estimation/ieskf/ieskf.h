@@ -60,7 +60,6 @@ class Ieskf final : public BackendBase {
 
   StateCovariance P_ = StateCovariance::Identity();
   lie::SE3d T_imu_lidar_configured_;  // the first Initialize's
-
   std::vector<registration::Plane> planes_;  // per scan point, valid where matched_[i]
   std::vector<char> matched_;
 };
