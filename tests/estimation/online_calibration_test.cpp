@@ -16,7 +16,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <string>
+#include <utility>
 
 #include "estimation/scenario_run.h"
 #include "hylo/common/time.h"
@@ -39,54 +41,80 @@ struct CalibrationErrors {
   double ate_m = 0.0;
 };
 
+// The scenario drawn for `number` with a 40 s mapping drive and a 35 s drive B.
+sim::Scenario CalibrationScenario(uint64_t number) {
+  sim::Scenario scenario = sim::DrawScenario(number);
+  scenario.max_drive_a_s = 40.0;
+  scenario.max_drive_b_s = 35.0;
+  return scenario;
+}
+
+// Drive B localized by `backend` in the true-pose map of the mapping drive, the options as the
+// sheet gives them then changed by `adjust`: that one run's figures (`summary`: the scenario's).
+ModeFigures LocalizeAdjusted(const sim::Scenario& scenario, estimation::Estimator::Backend backend,
+                             std::function<void(odometry::OdometryPipelineOptions*)> adjust,
+                             std::string* summary) {
+  ScenarioRunOptions options;
+  options.preset_dir = std::string(HYLO_SOURCE_DIR) + "/config/presets";
+  options.slam = false;
+  options.backends = {backend};
+  Variant wrong;
+  wrong.name = "calibrating";
+  wrong.adjust = std::move(adjust);
+  options.variants = {wrong};
+  const ScenarioFigures f = RunScenario(scenario, options);
+  *summary = f.summary;
+  EXPECT_EQ(f.runs.size(), 1u);
+  const ModeFigures run = f.runs.at(0).localization;
+  EXPECT_FALSE(run.failed) << run.message;
+  return run;
+}
+
+// The angle between the extrinsic rotation `c` estimated and the scenario's true one, deg.
+double RotationErrorDeg(const sim::Scenario& scenario, const lie::SO3d& R_imu_lidar_configured,
+                        const estimation::OnlineCalibration& c) {
+  const lie::SO3d R_true = lie::SO3d::FromMatrix(scenario.T_imu_lidar.linear());
+  const lie::SO3d Q_true = R_true * R_imu_lidar_configured.Inverse();
+  const lie::SO3d Q_estimated = lie::SO3d::Exp(c.extrinsic_rotation_correction_rad);
+  return lie::Minus(Q_estimated, Q_true).norm() / kDeg;
+}
+
 // Runs drive B in the true-pose map with calibration on, the configuration wrong by
 // `clock_error_s` and `rotation_error_rad` (0 and zero: right, as far as the sheet knows).
 CalibrationErrors Calibrate(uint64_t number, double clock_error_s,
                             const Eigen::Vector3d& rotation_error_rad) {
-  sim::Scenario scenario = sim::DrawScenario(number);
-  scenario.max_drive_a_s = 40.0;
-  scenario.max_drive_b_s = 35.0;
-  ScenarioRunOptions options;
-  options.preset_dir = std::string(HYLO_SOURCE_DIR) + "/config/presets";
-  options.slam = false;
-  options.backends = {estimation::Estimator::Backend::kSlidingWindow};
-  Variant wrong;
-  wrong.name = "calibrating";
+  const sim::Scenario scenario = CalibrationScenario(number);
   lie::SO3d R_imu_lidar_configured;
   double configured_offset_s = 0.0;
-  wrong.adjust = [&](odometry::OdometryPipelineOptions* o) {
-    // No wall-time stop of the solve: the figures must not depend on the machine's load.
-    o->estimator.sliding_window.max_solver_time_s = 1.0;
-    o->lidar.time_offset_s -= clock_error_s;
-    o->T_imu_lidar.so3() = lie::SO3d::Exp(rotation_error_rad) * o->T_imu_lidar.so3();
-    o->estimator.sliding_window.estimate_time_offset = true;
-    o->estimator.sliding_window.estimate_extrinsic_rotation = true;
-    R_imu_lidar_configured = o->T_imu_lidar.so3();
-    configured_offset_s = o->lidar.time_offset_s;
-  };
-  options.variants = {wrong};
-  const ScenarioFigures f = RunScenario(scenario, options);
-  EXPECT_EQ(f.runs.size(), 1u);
-  const ModeFigures& run = f.runs.at(0).localization;
-  EXPECT_FALSE(run.failed) << run.message;
+  std::string summary;
+  const ModeFigures run = LocalizeAdjusted(
+      scenario, estimation::Estimator::Backend::kSlidingWindow,
+      [&](odometry::OdometryPipelineOptions* o) {
+        // No wall-time stop of the solve: the figures must not depend on the machine's load.
+        o->estimator.sliding_window.max_solver_time_s = 1.0;
+        o->lidar.time_offset_s -= clock_error_s;
+        o->T_imu_lidar.so3() = lie::SO3d::Exp(rotation_error_rad) * o->T_imu_lidar.so3();
+        o->estimator.sliding_window.estimate_time_offset = true;
+        o->estimator.sliding_window.estimate_extrinsic_rotation = true;
+        R_imu_lidar_configured = o->T_imu_lidar.so3();
+        configured_offset_s = o->lidar.time_offset_s;
+      },
+      &summary);
   const estimation::OnlineCalibration& c = run.calibration;
   EXPECT_TRUE(c.time_offset_estimated && c.extrinsic_rotation_estimated);
 
   // t_imu = t_lidar − lidar_time_offset: the offset a configuration needs.
   const double true_offset_s = -NanosToSeconds(scenario.lidar_time_offset_ns);
-  const lie::SO3d R_true = lie::SO3d::FromMatrix(scenario.T_imu_lidar.linear());
-  const lie::SO3d Q_true = R_true * R_imu_lidar_configured.Inverse();
-  const lie::SO3d Q_estimated = lie::SO3d::Exp(c.extrinsic_rotation_correction_rad);
   CalibrationErrors e;
   e.time_offset_s = c.time_offset_correction_s - (true_offset_s - configured_offset_s);
   e.time_offset_sigma_s = c.time_offset_sigma_s;
-  e.rotation_deg = lie::Minus(Q_estimated, Q_true).norm() / kDeg;
+  e.rotation_deg = RotationErrorDeg(scenario, R_imu_lidar_configured, c);
   e.rotation_sigma_deg = c.extrinsic_rotation_sigma_rad.maxCoeff() / kDeg;
   e.ate_m = run.ate_m;
   std::printf(
       "scenario %llu (%s): time offset error %+.2f ms (sigma %.2f ms), rotation error %.3f deg "
       "(sigma %.3f deg), correction found %+.2f ms, %.3f deg; ATE %.3f m\n",
-      static_cast<unsigned long long>(number), f.summary.c_str(), e.time_offset_s * 1e3,
+      static_cast<unsigned long long>(number), summary.c_str(), e.time_offset_s * 1e3,
       e.time_offset_sigma_s * 1e3, e.rotation_deg, e.rotation_sigma_deg,
       c.time_offset_correction_s * 1e3, c.extrinsic_rotation_correction_rad.norm() / kDeg, e.ate_m);
   return e;
@@ -158,34 +186,22 @@ struct ExtrinsicErrors {
 };
 
 ExtrinsicErrors IeskfCalibrate(uint64_t number, const Eigen::Vector3d& rotation_error_rad) {
-  sim::Scenario scenario = sim::DrawScenario(number);
-  scenario.max_drive_a_s = 40.0;
-  scenario.max_drive_b_s = 35.0;
-  ScenarioRunOptions options;
-  options.preset_dir = std::string(HYLO_SOURCE_DIR) + "/config/presets";
-  options.slam = false;
-  options.backends = {estimation::Estimator::Backend::kIeskf};
-  Variant wrong;
-  wrong.name = "calibrating";
+  const sim::Scenario scenario = CalibrationScenario(number);
   lie::SE3d T_imu_lidar_configured;
-  wrong.adjust = [&](odometry::OdometryPipelineOptions* o) {
-    o->T_imu_lidar.so3() = lie::SO3d::Exp(rotation_error_rad) * o->T_imu_lidar.so3();
-    o->estimator.ieskf.online_extrinsic = true;
-    T_imu_lidar_configured = o->T_imu_lidar;
-  };
-  options.variants = {wrong};
-  const ScenarioFigures f = RunScenario(scenario, options);
-  EXPECT_EQ(f.runs.size(), 1u);
-  const ModeFigures& run = f.runs.at(0).localization;
-  EXPECT_FALSE(run.failed) << run.message;
+  std::string summary;
+  const ModeFigures run = LocalizeAdjusted(
+      scenario, estimation::Estimator::Backend::kIeskf,
+      [&](odometry::OdometryPipelineOptions* o) {
+        o->T_imu_lidar.so3() = lie::SO3d::Exp(rotation_error_rad) * o->T_imu_lidar.so3();
+        o->estimator.ieskf.online_extrinsic = true;
+        T_imu_lidar_configured = o->T_imu_lidar;
+      },
+      &summary);
   const estimation::OnlineCalibration& c = run.calibration;
   EXPECT_TRUE(c.extrinsic_rotation_estimated && c.extrinsic_translation_estimated);
   EXPECT_FALSE(c.time_offset_estimated);
-  const lie::SO3d R_true = lie::SO3d::FromMatrix(scenario.T_imu_lidar.linear());
-  const lie::SO3d Q_true = R_true * T_imu_lidar_configured.so3().Inverse();
   ExtrinsicErrors e;
-  e.rotation_deg =
-      lie::Minus(lie::SO3d::Exp(c.extrinsic_rotation_correction_rad), Q_true).norm() / kDeg;
+  e.rotation_deg = RotationErrorDeg(scenario, T_imu_lidar_configured.so3(), c);
   e.rotation_sigma_deg = c.extrinsic_rotation_sigma_rad.maxCoeff() / kDeg;
   e.translation_m = (T_imu_lidar_configured.translation() + c.extrinsic_translation_correction_m -
                      scenario.T_imu_lidar.translation())
@@ -195,7 +211,7 @@ ExtrinsicErrors IeskfCalibrate(uint64_t number, const Eigen::Vector3d& rotation_
   std::printf(
       "scenario %llu (%s), ieskf: rotation error %.3f deg (sigma %.3f deg), translation error "
       "%.4f m (sigma %.4f m), correction found %.3f deg; ATE %.4f m\n",
-      static_cast<unsigned long long>(number), f.summary.c_str(), e.rotation_deg,
+      static_cast<unsigned long long>(number), summary.c_str(), e.rotation_deg,
       e.rotation_sigma_deg, e.translation_m, e.translation_sigma_m,
       c.extrinsic_rotation_correction_rad.norm() / kDeg, e.ate_m);
   return e;
