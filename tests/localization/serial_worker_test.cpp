@@ -1,7 +1,11 @@
 #include "hylo/localization/serial_worker.h"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <future>
 #include <stdexcept>
@@ -9,6 +13,10 @@
 
 namespace hylo::localization {
 namespace {
+
+int ThisThreadsNicenessForTest() {
+  return getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
+}
 
 // Jobs run in the order they were posted, on a thread or on the caller's, and an answer waits
 // for every job posted before it.
@@ -68,6 +76,18 @@ TEST(SerialWorker, PostWaitsForRoomWhenTheQueueIsFull) {
   release.set_value();
   third.get();
   EXPECT_EQ(worker.Ask([&order] { return order; }).get(), (std::vector<int>{0, 1, 2}));
+}
+
+// The worker's thread runs the asked steps below the thread that made it (Linux lets any
+// thread lower its own priority); inline, the jobs run at the caller's, which is left alone.
+TEST(SerialWorker, ItsThreadRunsTheAskedStepsBelowTheThreadThatMadeIt) {
+  const int starter = ThisThreadsNicenessForTest();
+  SerialWorker on_thread(/*on_thread=*/true, /*max_queued=*/8, /*niceness_below=*/5);
+  EXPECT_EQ(on_thread.Ask([] { return ThisThreadsNicenessForTest(); }).get(),
+            std::min(starter + 5, 19));
+  SerialWorker in_line(/*on_thread=*/false, /*max_queued=*/8, /*niceness_below=*/5);
+  EXPECT_EQ(in_line.Ask([] { return ThisThreadsNicenessForTest(); }).get(), starter);
+  EXPECT_EQ(ThisThreadsNicenessForTest(), starter);
 }
 
 }  // namespace
