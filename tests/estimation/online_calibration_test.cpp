@@ -37,6 +37,7 @@ struct CalibrationErrors {
   double time_offset_s = 0.0;  ///< estimated minus true correction
   double time_offset_sigma_s = 0.0;
   double rotation_deg = 0.0;        ///< angle between the estimated and the true extrinsic rotation
+  Eigen::Vector3d rotation_vehicle_deg = Eigen::Vector3d::Zero();  ///< as roll, pitch, yaw
   double rotation_sigma_deg = 0.0;  ///< largest of the three
   double ate_m = 0.0;
 };
@@ -70,13 +71,17 @@ ModeFigures LocalizeAdjusted(const sim::Scenario& scenario, estimation::Estimato
   return run;
 }
 
-// The angle between the extrinsic rotation `c` estimated and the scenario's true one, deg.
-double RotationErrorDeg(const sim::Scenario& scenario, const lie::SO3d& R_imu_lidar_configured,
-                        const estimation::OnlineCalibration& c) {
+// The rotation from the scenario's true extrinsic rotation to the one `c` estimated, as a
+// rotation vector about the vehicle's axes (x forward, z up: roll, pitch, yaw), deg. Its norm
+// is the angle between the two; its axes say which motion the estimate lacked.
+Eigen::Vector3d RotationErrorDeg(const sim::Scenario& scenario,
+                                 const lie::SO3d& R_imu_lidar_configured,
+                                 const estimation::OnlineCalibration& c) {
   const lie::SO3d R_true = lie::SO3d::FromMatrix(scenario.T_imu_lidar.linear());
   const lie::SO3d Q_true = R_true * R_imu_lidar_configured.Inverse();
   const lie::SO3d Q_estimated = lie::SO3d::Exp(c.extrinsic_rotation_correction_rad);
-  return lie::Minus(Q_estimated, Q_true).norm() / kDeg;
+  // Q left of R_imu_lidar: the error is about the IMU's axes.
+  return scenario.R_vehicle_imu * lie::Minus(Q_estimated, Q_true) / kDeg;
 }
 
 // Runs drive B in the true-pose map with calibration on, the configuration wrong by
@@ -108,14 +113,17 @@ CalibrationErrors Calibrate(uint64_t number, double clock_error_s,
   CalibrationErrors e;
   e.time_offset_s = c.time_offset_correction_s - (true_offset_s - configured_offset_s);
   e.time_offset_sigma_s = c.time_offset_sigma_s;
-  e.rotation_deg = RotationErrorDeg(scenario, R_imu_lidar_configured, c);
+  e.rotation_vehicle_deg = RotationErrorDeg(scenario, R_imu_lidar_configured, c);
+  e.rotation_deg = e.rotation_vehicle_deg.norm();
   e.rotation_sigma_deg = c.extrinsic_rotation_sigma_rad.maxCoeff() / kDeg;
   e.ate_m = run.ate_m;
   std::printf(
       "scenario %llu (%s): time offset error %+.2f ms (sigma %.2f ms), rotation error %.3f deg "
-      "(sigma %.3f deg), correction found %+.2f ms, %.3f deg; ATE %.3f m\n",
+      "(roll %+.3f, pitch %+.3f, yaw %+.3f; sigma %.3f deg), correction found %+.2f ms, %.3f "
+      "deg; ATE %.3f m\n",
       static_cast<unsigned long long>(number), summary.c_str(), e.time_offset_s * 1e3,
-      e.time_offset_sigma_s * 1e3, e.rotation_deg, e.rotation_sigma_deg,
+      e.time_offset_sigma_s * 1e3, e.rotation_deg, e.rotation_vehicle_deg.x(),
+      e.rotation_vehicle_deg.y(), e.rotation_vehicle_deg.z(), e.rotation_sigma_deg,
       c.time_offset_correction_s * 1e3, c.extrinsic_rotation_correction_rad.norm() / kDeg, e.ate_m);
   return e;
 }
@@ -179,6 +187,7 @@ TEST(OnlineCalibration, SummaryGivesTheOffsetToConfigureAndDegrees) {
 // configured rotation wrong by `rotation_error_rad`: the errors left in its estimate.
 struct ExtrinsicErrors {
   double rotation_deg = 0.0;        ///< angle between the estimated and the true rotation
+  Eigen::Vector3d rotation_vehicle_deg = Eigen::Vector3d::Zero();  ///< as roll, pitch, yaw
   double rotation_sigma_deg = 0.0;  ///< largest of the three
   double translation_m = 0.0;       ///< distance between the estimated and the true translation
   double translation_sigma_m = 0.0;  ///< largest of the three
@@ -201,7 +210,8 @@ ExtrinsicErrors IeskfCalibrate(uint64_t number, const Eigen::Vector3d& rotation_
   EXPECT_TRUE(c.extrinsic_rotation_estimated && c.extrinsic_translation_estimated);
   EXPECT_FALSE(c.time_offset_estimated);
   ExtrinsicErrors e;
-  e.rotation_deg = RotationErrorDeg(scenario, T_imu_lidar_configured.so3(), c);
+  e.rotation_vehicle_deg = RotationErrorDeg(scenario, T_imu_lidar_configured.so3(), c);
+  e.rotation_deg = e.rotation_vehicle_deg.norm();
   e.rotation_sigma_deg = c.extrinsic_rotation_sigma_rad.maxCoeff() / kDeg;
   e.translation_m = (T_imu_lidar_configured.translation() + c.extrinsic_translation_correction_m -
                      scenario.T_imu_lidar.translation())
@@ -209,9 +219,11 @@ ExtrinsicErrors IeskfCalibrate(uint64_t number, const Eigen::Vector3d& rotation_
   e.translation_sigma_m = c.extrinsic_translation_sigma_m.maxCoeff();
   e.ate_m = run.ate_m;
   std::printf(
-      "scenario %llu (%s), ieskf: rotation error %.3f deg (sigma %.3f deg), translation error "
-      "%.4f m (sigma %.4f m), correction found %.3f deg; ATE %.4f m\n",
+      "scenario %llu (%s), ieskf: rotation error %.3f deg (roll %+.3f, pitch %+.3f, yaw %+.3f; "
+      "sigma %.3f deg), translation error %.4f m (sigma %.4f m), correction found %.3f deg; ATE "
+      "%.4f m\n",
       static_cast<unsigned long long>(number), summary.c_str(), e.rotation_deg,
+      e.rotation_vehicle_deg.x(), e.rotation_vehicle_deg.y(), e.rotation_vehicle_deg.z(),
       e.rotation_sigma_deg, e.translation_m, e.translation_sigma_m,
       c.extrinsic_rotation_correction_rad.norm() / kDeg, e.ate_m);
   return e;
