@@ -36,9 +36,9 @@ const Eigen::Vector3d kRotationError_rad =
 struct CalibrationErrors {
   double time_offset_s = 0.0;  ///< estimated minus true correction
   double time_offset_sigma_s = 0.0;
-  double rotation_deg = 0.0;        ///< angle between the estimated and the true extrinsic rotation
+  double rotation_deg = 0.0;  ///< angle between the estimated and the true extrinsic rotation
   Eigen::Vector3d rotation_vehicle_deg = Eigen::Vector3d::Zero();  ///< as roll, pitch, yaw
-  double rotation_sigma_deg = 0.0;  ///< largest of the three
+  double rotation_sigma_deg = 0.0;                                 ///< largest of the three
   double ate_m = 0.0;
 };
 
@@ -186,10 +186,10 @@ TEST(OnlineCalibration, SummaryGivesTheOffsetToConfigureAndDegrees) {
 // The IESKF's online extrinsic (ieskf.online_extrinsic) on drive B in the true-pose map, the
 // configured rotation wrong by `rotation_error_rad`: the errors left in its estimate.
 struct ExtrinsicErrors {
-  double rotation_deg = 0.0;        ///< angle between the estimated and the true rotation
+  double rotation_deg = 0.0;  ///< angle between the estimated and the true rotation
   Eigen::Vector3d rotation_vehicle_deg = Eigen::Vector3d::Zero();  ///< as roll, pitch, yaw
-  double rotation_sigma_deg = 0.0;  ///< largest of the three
-  double translation_m = 0.0;       ///< distance between the estimated and the true translation
+  double rotation_sigma_deg = 0.0;                                 ///< largest of the three
+  double translation_m = 0.0;        ///< distance between the estimated and the true translation
   double translation_sigma_m = 0.0;  ///< largest of the three
   double ate_m = 0.0;
 };
