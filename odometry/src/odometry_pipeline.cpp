@@ -266,6 +266,11 @@ bool OdometryPipeline::ProcessScan(MeasurementGroup* group, ScanResult* result) 
   estimator_->SetScansExtendMap(searching     ? false
                                 : supervisor_ ? supervisor_->ScansExtendMap(scan.registration.t_ns)
                                               : options_.update_map);
+  // Calibration is estimated against the prior map or SLAM's map, not the scratch map a
+  // search builds from its own scans: there the extrinsic's tilt and the accelerometer bias
+  // take up the vehicle's acceleration together, and the handover would carry both into the
+  // map (docs/results.md, "Why #0 and #10 miss").
+  estimator_->SetCalibrationHeld(searching);
   result->update = estimator_->Update(after_gap ? nothing : scan.registration,
                                       searching ? supervisor_->search_matcher() : matcher_);
   if (blind_gap) result->update.message = "not registered: the first scan after a gap without IMU";

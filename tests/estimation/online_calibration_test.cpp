@@ -11,7 +11,8 @@
 // calibration was developed; these are two of the others, the two cheapest to simulate.
 // The filter (ieskf.online_extrinsic, which has no clock offset to estimate): the same 1°
 // rotation, the same bounds, on the same two scenarios; nothing was tuned for it (its figures
-// on all 24 scenarios are in docs/results.md, two of which miss these bounds).
+// on all 24 scenarios are in docs/results.md, two of which miss these bounds); and on
+// scenario 0, whose start comes from a search while moving, with the calibration held then.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -192,6 +193,7 @@ struct ExtrinsicErrors {
   double translation_m = 0.0;        ///< distance between the estimated and the true translation
   double translation_sigma_m = 0.0;  ///< largest of the three
   double ate_m = 0.0;
+  std::size_t searches = 0;  ///< searches while moving the run began
 };
 
 ExtrinsicErrors IeskfCalibrate(uint64_t number, const Eigen::Vector3d& rotation_error_rad) {
@@ -218,6 +220,7 @@ ExtrinsicErrors IeskfCalibrate(uint64_t number, const Eigen::Vector3d& rotation_
                         .norm();
   e.translation_sigma_m = c.extrinsic_translation_sigma_m.maxCoeff();
   e.ate_m = run.ate_m;
+  e.searches = run.searches;
   std::printf(
       "scenario %llu (%s), ieskf: rotation error %.3f deg (roll %+.3f, pitch %+.3f, yaw %+.3f; "
       "sigma %.3f deg), translation error %.4f m (sigma %.4f m), correction found %.3f deg; ATE "
@@ -231,6 +234,19 @@ ExtrinsicErrors IeskfCalibrate(uint64_t number, const Eigen::Vector3d& rotation_
 
 TEST_P(OnlineCalibration, IeskfFindsAnExtrinsicRotationLeftOutOfTheConfiguration) {
   const ExtrinsicErrors e = IeskfCalibrate(GetParam(), kRotationError_rad);
+  EXPECT_LE(e.rotation_deg, 0.5);
+  EXPECT_LE(e.translation_m, 0.05);
+  EXPECT_LE(e.ate_m, 0.03);
+}
+
+// Scenario 0's guess start is refused and its start comes from a search while the vehicle
+// moves off. Estimated in the search's own young map, the extrinsic's roll took up the
+// accelerometer bias's jump and the handover carried both into the prior map: 1.06° off
+// (docs/results.md). The pipeline now holds the calibration while searching. This is the
+// scenario that mechanism was found on, so it guards the mechanism, not a held-out figure.
+TEST(OnlineCalibration, IeskfHoldsTheExtrinsicWhileSearchingFromAMovingStart) {
+  const ExtrinsicErrors e = IeskfCalibrate(0, kRotationError_rad);
+  EXPECT_GE(e.searches, 1u) << "the start no longer comes from a search: the test lost its case";
   EXPECT_LE(e.rotation_deg, 0.5);
   EXPECT_LE(e.translation_m, 0.05);
   EXPECT_LE(e.ate_m, 0.03);

@@ -63,6 +63,9 @@ ModeFigures Score(const PipelineRun& run, const std::vector<TimedPose>& truth,
   }
   f.scans = run.results.size();
   f.calibration = run.pipeline.estimator().Calibration();
+  f.searches = static_cast<std::size_t>(std::count_if(
+      run.pipeline.events().begin(), run.pipeline.events().end(),
+      [](const auto& e) { return e.kind == localization::LocalizationEvent::Kind::kSearching; }));
   f.cpu_ms_median = Percentile(cpu, 0.5);
   f.cpu_ms_p99 = Percentile(cpu, 0.99);
   f.wall_ms_median = Percentile(wall, 0.5);

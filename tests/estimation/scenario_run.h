@@ -69,6 +69,7 @@ struct ModeFigures {
   double process_cpu_ms_p99 = 0.0;
   std::size_t scans = 0, not_applied = 0, degenerate = 0;
   std::size_t out_of_time = 0;  ///< scans whose solve stopped at its time budget
+  std::size_t searches = 0;     ///< searches while moving begun (localization)
   estimation::OnlineCalibration calibration;  ///< at the end of the run (not in the JSON)
 };
 

@@ -58,7 +58,9 @@ double PointToPlaneResidual(const NavState& x, const Eigen::Vector3d& point_lida
   return Residual(PosesAsMatrices(x), point_lidar, plane, jacobian);
 }
 
-int Ieskf::ActiveDim() const { return options_.ieskf.online_extrinsic ? kDim : kDimNoExtrinsic; }
+int Ieskf::ActiveDim() const {
+  return options_.ieskf.online_extrinsic && !calibration_held_ ? kDim : kDimNoExtrinsic;
+}
 
 void Ieskf::Associate(const NavState& x, const DeskewedScan& scan,
                       const registration::PlaneMatcher& planes) {
@@ -160,6 +162,12 @@ UpdateSummary Ieskf::Update(const DeskewedScan& scan, const registration::PlaneM
 void Ieskf::Correct(const DeskewedScan& scan, const registration::PlaneMatcher& planes,
                     UpdateSummary* summary) {
   const int dim = ActiveDim();
+  if (dim < kDim) {
+    // The update treats the extrinsic as known: its correlation with the rest of the state,
+    // which this update would not carry, is dropped rather than left stale.
+    P_.block(0, dim, dim, kDim - dim).setZero();
+    P_.block(dim, 0, kDim - dim, dim).setZero();
+  }
   const NavState prior = state_;
   const Eigen::MatrixXd P_prior = P_.topLeftCorner(dim, dim);
   const Eigen::MatrixXd P_prior_inv = P_prior.ldlt().solve(Eigen::MatrixXd::Identity(dim, dim));

@@ -28,6 +28,7 @@ class BackendBase : public Estimator {
   const NavState& state() const final { return state_; }
   void TakeFinalized(std::vector<NavState>* states) final;
   void SetScansExtendMap(bool extend) final { scans_extend_map_ = extend; }
+  void SetCalibrationHeld(bool held) final { calibration_held_ = held; }
 
  protected:
   /// Throws hylo::InternalError naming the field when `options` or `imu` is not valid.
@@ -59,6 +60,7 @@ class BackendBase : public Estimator {
   RobustRegistration robust_;           // the wide-basin start, when enabled
   std::vector<NavState> finalized_;     // finalized states not taken yet
   bool scans_extend_map_ = true;        // SetScansExtendMap
+  bool calibration_held_ = false;       // SetCalibrationHeld
 };
 
 }  // namespace hylo::estimation

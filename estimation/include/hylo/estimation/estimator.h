@@ -124,6 +124,11 @@ class Estimator {
   /// newer scans too where the map has too few points; against a fixed prior it must not: its
   /// own scans would vouch for its pose in the scan's health.
   virtual void SetScansExtendMap(bool extend) = 0;
+  /// Whether the online calibration (OnlineCalibration) must stay where it is in the next
+  /// updates, told before each Update; default false. While searching, the scans register
+  /// against a scratch map the same scans built: there the extrinsic's tilt trades against the
+  /// accelerometer bias instead of being observed. A back-end without calibration ignores it.
+  virtual void SetCalibrationHeld(bool /*held*/) {}
   /// Propagates to scan.t_ns and corrects with point-to-plane residuals from `planes`.
   virtual UpdateSummary Update(const DeskewedScan& scan,
                                const registration::PlaneMatcher& planes) = 0;
