@@ -14,6 +14,9 @@
 namespace hylo::localization {
 namespace {
 
+// Read here with the system call itself rather than the library's ThisThreadsNiceness(): the
+// test checks the library's lowering of a thread's priority, so it must not also trust the
+// library's reading of it.
 int ThisThreadsNicenessForTest() {
   return getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
 }
