@@ -5,6 +5,7 @@
 
 #include <random>
 
+#include "estimation/synthetic_scenes.h"
 #include "hylo/estimation/ieskf/ieskf.h"
 #include "hylo/estimation/initial_uncertainty.h"
 #include "hylo/registration/brute_force_search.h"
@@ -13,43 +14,9 @@ namespace hylo::estimation {
 namespace {
 
 using hylo::PointCloud;
-
-// Points on axis-aligned rectangles (one per face), spacing 0.1 m.
-void AddFace(int fixed_axis, double fixed, Eigen::Vector2d lo, Eigen::Vector2d hi,
-             PointCloud* points) {
-  const int a = (fixed_axis + 1) % 3, b = (fixed_axis + 2) % 3;
-  for (double u = lo.x(); u <= hi.x(); u += 0.1) {
-    for (double v = lo.y(); v <= hi.y(); v += 0.1) {
-      Eigen::Vector3f p;
-      p[fixed_axis] = static_cast<float>(fixed);
-      p[a] = static_cast<float>(u);
-      p[b] = static_cast<float>(v);
-      points->push_back(p);
-    }
-  }
-}
-
-PointCloud Floor() {
-  PointCloud p;
-  AddFace(2, 0.0, {-10, -10}, {10, 10}, &p);
-  return p;
-}
-PointCloud Corridor() {  // along x: floor and two walls, no end
-  PointCloud p;
-  AddFace(2, 0.0, {-15, -1.5}, {15, 1.5}, &p);
-  AddFace(1, -1.5, {0, -15}, {3, 15}, &p);
-  AddFace(1, 1.5, {0, -15}, {3, 15}, &p);
-  return p;
-}
-PointCloud Room() {
-  PointCloud p;
-  AddFace(2, 0.0, {-4, -6}, {4, 6}, &p);
-  AddFace(0, -4.0, {-6, 0}, {6, 3}, &p);
-  AddFace(0, 4.0, {-6, 0}, {6, 3}, &p);
-  AddFace(1, -6.0, {0, -4}, {3, 4}, &p);
-  AddFace(1, 6.0, {0, -4}, {3, 4}, &p);
-  return p;
-}
+using hylo::testing::Corridor;
+using hylo::testing::Floor;
+using hylo::testing::Room;
 
 struct Outcome {
   UpdateSummary summary;
