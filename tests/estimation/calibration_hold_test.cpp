@@ -5,7 +5,9 @@
 // IMU, the lidar on the IMU with the configuration 1° off in roll.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "estimation/synthetic_scenes.h"
 #include "hylo/estimation/estimator.h"
