@@ -162,9 +162,10 @@ UpdateSummary Ieskf::Update(const DeskewedScan& scan, const registration::PlaneM
 void Ieskf::Correct(const DeskewedScan& scan, const registration::PlaneMatcher& planes,
                     UpdateSummary* summary) {
   const int dim = ActiveDim();
-  if (dim < kDim) {
-    // The update treats the extrinsic as known: its correlation with the rest of the state,
-    // which this update would not carry, is dropped rather than left stale.
+  if (dim < kDim && options_.ieskf.online_extrinsic) {
+    // Held: the update treats the extrinsic as known, so its correlation with the rest of the
+    // state, which this update would not carry, is dropped rather than left stale. (Never
+    // estimated, the extrinsic has no correlation: propagation does not couple it.)
     P_.block(0, dim, dim, kDim - dim).setZero();
     P_.block(dim, 0, kDim - dim, dim).setZero();
   }

@@ -125,7 +125,7 @@ void SlidingWindow::Solve(SolveReport* report, double budget_s) {
   for (double* g : GlobalBlocks()) problem.AddParameterBlock(g, 3);
   // At rest neither a clock offset nor the extrinsic moves a scan's points relative to the
   // IMU's motion: the calibration would wander on noise. It waits for the vehicle to move,
-  // and for a map it did not build itself when told to (SetCalibrationHeld).
+  // and stays while the caller holds it (SetCalibrationHeld: a search's scratch map).
   const bool window_at_rest =
       std::all_of(window_.begin() + 1, window_.end(), [](const auto& s) { return s->at_rest; });
   for (const BlockRef& b : CalibrationBlocks()) {
