@@ -159,6 +159,7 @@ void SlidingWindow::SetNewestScan(const DeskewedScan& scan) {
   newest.points_imu.clear();
   newest.ranges_m.clear();
   newest.matches.clear();
+  newest.MatchesChanged();
   newest.points_imu.reserve(scan.points_lidar.size());
   // With online calibration the points keep the configured extrinsic: the factors correct it.
   const lie::SE3d T_imu_lidar =
@@ -182,6 +183,7 @@ std::size_t SlidingWindow::AssociateNewest(const registration::PlaneMatcher& pla
   WindowState& newest = *window_.back();
   const lie::SE3d T_map_imu = ObservationPose(window_.size() - 1);
   newest.matches.clear();
+  newest.MatchesChanged();
   const std::size_t n = newest.points_imu.size();
   // Each point's plane on its own slot, then the matches in point order: the same whatever
   // the number of threads.
@@ -211,10 +213,14 @@ void SlidingWindow::Reweight() {
     const lie::SE3d T_map_imu = ObservationPose(k);
     const Eigen::Matrix3d R = T_map_imu.so3().Matrix();
     const Eigen::Vector3d p = T_map_imu.translation();
+    bool changed = false;
     for (PlaneMatch& m : window_[k]->matches) {
       const double w = kernel.Weight(m.plane.Distance(R * m.point_imu + p));
-      m.sqrt_weight = std::sqrt(w) / lidar_noise_m;
+      const double sqrt_weight = std::sqrt(w) / lidar_noise_m;
+      changed = changed || sqrt_weight != m.sqrt_weight;
+      m.sqrt_weight = sqrt_weight;
     }
+    if (changed) window_[k]->MatchesChanged();
     for (ScanPairMatches& pair : window_[k]->pairs) {
       const lie::SE3d T_earlier_map = pair.earlier->blocks.ToNavState(state_).T_map_imu().Inverse();
       for (PlaneMatch& m : pair.matches) {
@@ -294,6 +300,7 @@ void SlidingWindow::Correct(const DeskewedScan& scan, const registration::PlaneM
     if (static_cast<int>(summary->num_matches) < min_matches) {
       summary->message = TooFewMatchesMessage(summary->num_matches, min_matches);
       newest.matches.clear();
+      newest.MatchesChanged();
       newest.pairs.clear();
       newest.blocks = predicted;
       summary->applied = false;

@@ -103,40 +103,6 @@ bool ImuFactor::Evaluate(double const* const* parameters, double* residuals,
   return true;
 }
 
-ScanPlaneFactor::ScanPlaneFactor(const std::vector<PlaneMatch>& matches) : matches_(matches) {
-  set_num_residuals(static_cast<int>(matches.size()));
-  mutable_parameter_block_sizes()->assign({4, 3});
-}
-
-bool ScanPlaneFactor::Evaluate(double const* const* parameters, double* residuals,
-                               double** jacobians) const {
-  const Eigen::Quaterniond q(parameters[0]);
-  const Eigen::Matrix3d R = q.normalized().toRotationMatrix();
-  const Eigen::Map<const Eigen::Vector3d> p(parameters[1]);
-  const bool want_rotation = jacobians != nullptr && jacobians[0] != nullptr;
-  const bool want_position = jacobians != nullptr && jacobians[1] != nullptr;
-  // P⁺ = 4 Pᵀ of the rotation's PlusJacobian, so ambient row = tangent row · P⁺.
-  const Eigen::Matrix<double, 3, 4> lift = 4.0 * RotationPlusJacobian(parameters[0]).transpose();
-  // Each match writes its own residual and Jacobian rows: any number of threads.
-  registration::ParallelFor(matches_.size(), [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) {
-      const PlaneMatch& m = matches_[k];
-      residuals[k] = m.sqrt_weight * m.plane.Distance(R * m.point_imu + p);
-      if (!want_rotation && !want_position) continue;
-      // The point-to-plane factor of every solver (registration/point_to_plane.h).
-      const registration::Vector6 J =
-          m.sqrt_weight * registration::PointToPlaneJacobian(R, m.point_imu, m.plane);
-      if (want_rotation) {
-        Eigen::Map<Eigen::RowVector4d>(jacobians[0] + 4 * k) = J.head<3>().transpose() * lift;
-      }
-      if (want_position) {
-        Eigen::Map<Eigen::RowVector3d>(jacobians[1] + 3 * k) = J.tail<3>().transpose();
-      }
-    }
-  });
-  return true;
-}
-
 ScanPairFactor::ScanPairFactor(const std::vector<PlaneMatch>& matches) : matches_(matches) {
   set_num_residuals(static_cast<int>(matches.size()));
   mutable_parameter_block_sizes()->assign({4, 3, 4, 3});

@@ -52,20 +52,6 @@ class ImuFactor final : public ceres::SizedCostFunction<15, 4, 3, 9, 4, 3, 9, 3>
   ImuCovariance sqrt_information_;  // W with Wᵀ W = Σ⁻¹
 };
 
-/// Point-to-plane residuals of one scan, r_k = w_k (nᵀ(R q_k + p) + d). Blocks: rotation,
-/// position. The robust loss enters as fixed IRLS weights w_k (set between solver rounds):
-/// a per-point Ceres loss would need one residual block per point, ten times slower here.
-class ScanPlaneFactor final : public ceres::CostFunction {
- public:
-  /// Keeps a reference to `matches`, which must outlive the factor (and not change size).
-  explicit ScanPlaneFactor(const std::vector<PlaneMatch>& matches);
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override;
-
- private:
-  const std::vector<PlaneMatch>& matches_;
-};
-
 /// Point-to-plane residuals between two scans a and b of the window: a point q of scan a (its
 /// IMU frame) against a plane of scan b's own points (b's IMU frame),
 /// r_k = w_k (nᵀ R_bᵀ (R_a q_k + p_a − p_b) + d). Blocks: rotation_a, position_a, rotation_b,

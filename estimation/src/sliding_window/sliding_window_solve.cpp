@@ -83,7 +83,7 @@ FactorSet BuildFactors(const Window& window, const MarginalPrior* prior, double*
                                         calibration->T_imu_lidar_configured.translation()),
           std::move(blocks));
     } else if (!window[k]->matches.empty()) {
-      add(new ScanPlaneFactor(window[k]->matches), {x.rotation, x.position});
+      add(new ScanPlaneFactor(window[k]->PlaneSummary()), {x.rotation, x.position});
     }
     for (const ScanPairMatches& pair : window[k]->pairs) {
       if (pair.matches.empty()) continue;

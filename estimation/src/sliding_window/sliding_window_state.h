@@ -3,6 +3,7 @@
 
 #include <deque>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "calibration_factors.h"
@@ -11,6 +12,7 @@
 #include "hylo/lie/se3.h"
 #include "hylo/mapping/ikd_tree.h"
 #include "marginalization.h"
+#include "scan_plane_summary.h"
 #include "sliding_window_factors.h"
 
 namespace hylo::estimation {
@@ -40,12 +42,28 @@ struct WindowState {
   std::unique_ptr<ImuPreintegration> imu;
   std::vector<Eigen::Vector3d> points_imu;  ///< the scan, IMU frame at t_ns, m
   std::vector<double> ranges_m;             ///< each point's range from the lidar, m
-  std::vector<PlaneMatch> matches;          ///< current plane matches (empty: no lidar factor)
+  /// Current plane matches (empty: no lidar factor). Whoever changes them or their weights
+  /// calls MatchesChanged().
+  std::vector<PlaneMatch> matches;
   /// points_imu, searchable: the later scans of the window search it (null without a scan).
   std::unique_ptr<mapping::IkdTree> own_points;
   /// This scan's points against the planes of earlier scans of the window, found while it was
   /// the newest; a pair goes when its earlier scan leaves the window.
   std::vector<ScanPairMatches> pairs;
+
+  /// The matches' cost in closed form, summarized about this state's position when first asked
+  /// after they changed: most solves of a window change only the newest scan's matches.
+  const ScanPlaneSummary& PlaneSummary() {
+    if (!plane_summary_) {
+      plane_summary_ =
+          ScanPlaneSummary::Of(matches, Eigen::Map<const Eigen::Vector3d>(blocks.position));
+    }
+    return *plane_summary_;
+  }
+  void MatchesChanged() { plane_summary_.reset(); }
+
+ private:
+  std::optional<ScanPlaneSummary> plane_summary_;
 };
 
 using Window = std::deque<std::unique_ptr<WindowState>>;

@@ -4,7 +4,9 @@
 //   - IMU preintegration factors between consecutive states (imu_preintegration.h) whose
 //     15-row residual includes the bias random walk, or without an IMU a constant-velocity
 //     factor over three consecutive poses;
-//   - point-to-plane factors of every scan in the window against the shared map planes;
+//   - point-to-plane factors of every scan in the window against the shared map planes, each
+//     scan's as one factor of 13 residuals that holds its points' cost exactly (a quadratic
+//     form in the pose: scan_plane_summary.h), so a solve's cost does not grow with the points;
 //   - point-to-plane factors between the scans of the window (scan_pairs): a scan's points
 //     against planes of an earlier scan's own points, which move with that scan's pose;
 //   - a Gaussian prior from marginalising the states that left the window (marginalization.h).
