@@ -147,7 +147,8 @@ void WriteUpdates(const std::string& path, const PipelineRun& run) {
     out << 1e-9 * double(r.t_ns - t0_ns) << ' ' << u.num_matches << ' ' << u.num_points << ' '
         << u.applied << ' ' << u.degenerate << ' ' << u.min_translation_information << ' '
         << u.min_rotation_information << ' ' << u.rms_residual_m << ' ' << u.iterations << ' '
-        << r.map_points << ' ' << u.standstill << '\n';
+        << r.map_points << ' ' << u.standstill << ' ' << r.deskew_ms << ' ' << r.update_ms << ' '
+        << r.map_ms << ' ' << r.cpu_ms << '\n';
   }
 }
 
