@@ -95,7 +95,11 @@ void VisitFields(V& v, estimation::SlidingWindowOptions& o) {
     "wall-time budget of all rounds of one scan, s (> 0)");
   v("linear_solver", o.linear_solver, "Ceres' linear solver");
   v("association_rounds", o.association_rounds,
-    "solver rounds per scan; the newest scan's planes are searched again before each (>= 1)");
+    "solver rounds per scan; the newest scan's planes are searched again before each, where "
+    "rematch_threshold says (>= 1)");
+  v("rematch_threshold", o.rematch_threshold,
+    "a round searches the planes again only when a pose of the window moved more than this "
+    "since the last search, m or rad (0: before every round; >= 0)");
   v("robust_loss", o.robust_loss,
     "robust loss on the point-to-plane residuals; none: the matcher's range gate is the only "
     "outlier model, as in the filter");

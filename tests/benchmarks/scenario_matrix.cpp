@@ -90,6 +90,7 @@ const Setting kSettings[] = {
      [](double v, auto* o) { o->estimator.sliding_window.association_rounds = int(v); }},
     {"threads", [](double v, auto* o) { o->threads = int(v); }},
     {"sw_size", [](double v, auto* o) { o->estimator.sliding_window.window_size = int(v); }},
+    {"sw_rematch", [](double v, auto* o) { o->estimator.sliding_window.rematch_threshold = v; }},
     {"sw_pairs", [](double v, auto* o) { o->estimator.sliding_window.scan_pairs = v != 0; }},
     {"sw_pair_points", [](double v, auto* o) { o->estimator.sliding_window.pair_points = int(v); }},
     {"sw_iterations",

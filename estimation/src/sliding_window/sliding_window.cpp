@@ -172,6 +172,22 @@ void SlidingWindow::SetNewestScan(const DeskewedScan& scan) {
   KeepOwnPoints(&newest);
 }
 
+std::vector<lie::SE3d> SlidingWindow::ObservationPoses() const {
+  std::vector<lie::SE3d> poses;
+  poses.reserve(window_.size());
+  for (std::size_t k = 0; k < window_.size(); ++k) poses.push_back(ObservationPose(k));
+  return poses;
+}
+
+double SlidingWindow::LargestMotionSince(const std::vector<lie::SE3d>& poses) const {
+  double largest = 0.0;
+  for (std::size_t k = 0; k < window_.size() && k < poses.size(); ++k) {
+    const lie::SE3d motion = poses[k].Inverse() * ObservationPose(k);
+    largest = std::max({largest, motion.so3().Log().norm(), motion.translation().norm()});
+  }
+  return largest;
+}
+
 bool SlidingWindow::HasEarlierScans() const {
   for (std::size_t k = 0; k + 1 < window_.size(); ++k) {
     if (window_[k]->own_points != nullptr) return true;
@@ -198,8 +214,8 @@ std::size_t SlidingWindow::AssociateNewest(const registration::PlaneMatcher& pla
   });
   for (std::size_t i = 0; i < n; ++i) {
     if (!point_matched_[i]) continue;
-    newest.matches.push_back(
-        {newest.points_imu[i], point_planes_[i], 1.0, static_cast<uint32_t>(i)});
+    newest.matches.push_back({newest.points_imu[i], point_planes_[i], LeastSquaresSqrtWeight(),
+                              static_cast<uint32_t>(i)});
   }
   return newest.matches.size();
 }
@@ -208,6 +224,8 @@ void SlidingWindow::Reweight() {
   // Iteratively reweighted least squares (robust_kernel.h): the kernel's weight at the
   // current estimate, fixed during the next solver round.
   const registration::RobustKernel kernel = options_.sliding_window.Kernel();
+  // Without a kernel every weight stays the one the matches were made with.
+  if (kernel.type == registration::RobustKernel::Type::kNone) return;
   const double lidar_noise_m = options_.lidar_update.lidar_noise_m;
   for (std::size_t k = 0; k < window_.size(); ++k) {
     const lie::SE3d T_map_imu = ObservationPose(k);
@@ -295,8 +313,14 @@ void SlidingWindow::Correct(const DeskewedScan& scan, const registration::PlaneM
       },
       summary));
   const int min_matches = options_.lidar_update.min_matches;
+  std::vector<lie::SE3d> searched_at;  // each state's observation pose at the last search
   for (int round = 0; round < o.association_rounds; ++round) {
-    summary->num_matches = associate();
+    // A search again finds the same planes when no pose moved, and it is most of a round's
+    // cost on a dense head; the filter skips it the same way (ieskf.rematch_threshold).
+    if (round == 0 || LargestMotionSince(searched_at) > o.rematch_threshold) {
+      summary->num_matches = associate();
+      searched_at = ObservationPoses();
+    }
     if (static_cast<int>(summary->num_matches) < min_matches) {
       summary->message = TooFewMatchesMessage(summary->num_matches, min_matches);
       newest.matches.clear();

@@ -35,6 +35,7 @@ bool SlidingWindowOptions::IsValid(std::string* why) const {
          CheckAtLeast("association_rounds", association_rounds, 1, "", why) &&
          CheckAtLeast("pair_points", pair_points, 1, "", why) &&
          CheckPositive("max_solver_time_s", max_solver_time_s, why) &&
+         CheckNonNegative("rematch_threshold", rematch_threshold, why) &&
          CheckPositive("robust_loss_scale_m", robust_loss_scale_m, why) &&
          CheckPositive("time_offset_prior_sigma_s", time_offset_prior_sigma_s, why) &&
          CheckPositive("extrinsic_rotation_prior_sigma_rad", extrinsic_rotation_prior_sigma_rad,

@@ -56,7 +56,8 @@ std::size_t SlidingWindow::AssociatePairs(const registration::PlaneMatcherOption
     for (std::size_t s = 0; s < selected; ++s) {
       if (!point_matched_[s]) continue;
       const auto index = static_cast<uint32_t>(s * stride);
-      pair.matches.push_back({newest.points_imu[index], point_planes_[s], 1.0, index});
+      pair.matches.push_back(
+          {newest.points_imu[index], point_planes_[s], LeastSquaresSqrtWeight(), index});
     }
     total += pair.matches.size();
     if (!pair.matches.empty()) newest.pairs.push_back(std::move(pair));

@@ -74,6 +74,11 @@ class SlidingWindow final : public BackendBase {
   std::size_t AssociatePairs(const registration::PlaneMatcherOptions& options);
   bool HasEarlierScans() const;  // an earlier scan of the window to pair the newest with
   void Reweight();
+  /// A match's weight without a robust kernel: 1/σ of the lidar noise, 1/m.
+  double LeastSquaresSqrtWeight() const { return 1.0 / options_.lidar_update.lidar_noise_m; }
+  std::vector<lie::SE3d> ObservationPoses() const;  // of every state, oldest first
+  /// The largest rotation (rad) or translation (m) of a state's observation pose since `poses`.
+  double LargestMotionSince(const std::vector<lie::SE3d>& poses) const;
   void FinishUpdate(UpdateSummary* summary);
   void ComputeCovariance();
   NavState StateAt(std::size_t index) const;

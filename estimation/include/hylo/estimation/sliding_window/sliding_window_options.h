@@ -24,9 +24,13 @@ struct SlidingWindowOptions {
   int max_iterations = 6;           ///< Ceres iterations per association round, >= 1
   double max_solver_time_s = 0.05;  ///< wall-time budget of all rounds of one scan, s (> 0)
   LinearSolver linear_solver = LinearSolver::kSparseNormalCholesky;
-  /// Solver rounds per scan; the newest scan's planes are searched again (and the robust
-  /// weights of all scans recomputed) before each round, >= 1.
+  /// Solver rounds per scan, >= 1; the robust weights of all scans are recomputed before each,
+  /// and the newest scan's planes searched again where rematch_threshold says.
   int association_rounds = 2;
+  /// A round searches the newest scan's planes again only when a pose of the window moved by
+  /// more than this since they were last searched, m or rad (the filter's rematch_threshold,
+  /// same value); 0: search before every round. >= 0.
+  double rematch_threshold = 0.01;
   /// Default none: the matches already pass the range-scaled gate of PlaneMatcher, the IESKF's
   /// only outlier model, so both back-ends see the same measurement model (on simulator
   /// session A, Huber at 0.05 m doubled the end drift: 0.35 % against 0.18 %).
