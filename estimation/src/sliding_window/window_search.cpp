@@ -1,6 +1,7 @@
 #include "window_search.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "hylo/lie/isometry.h"
 
@@ -23,21 +24,30 @@ void MapAndWindowSearch::KNearest(const Eigen::Vector3f& query_map, int k, float
   // and all from the last second) would crowd them out and turn the update into scan-to-scan
   // odometry, which drifts (measured on the scenario matrix); they fill in where the map has
   // too few (the first scans of a run, places seen for the first time).
-  if (neighbors->size() >= static_cast<std::size_t>(k)) return;
+  const auto wanted = static_cast<std::size_t>(k);
+  if (neighbors->size() >= wanted) return;
+  const auto nearer = [](const registration::Neighbor& a, const registration::Neighbor& b) {
+    return a.squared_distance < b.squared_distance;
+  };
+  // Newest scan first, and each search no farther than the k-th nearest found so far: a
+  // farther point cannot be among the k nearest, and a tree prunes most of its nodes with a
+  // tight bound. The result is the k nearest of all the scans, as one search of their union
+  // would find them; the first scans of a run, with an empty map, search them all.
+  float reach_m = max_distance;
   std::vector<registration::Neighbor> found;
-  for (std::size_t s = 0; s < scans_.size(); ++s) {
-    scans_[s].points->KNearest(T_scan_map_[s] * query_map, k, max_distance, &found);
+  for (std::size_t s = scans_.size(); s-- > 0;) {
+    scans_[s].points->KNearest(T_scan_map_[s] * query_map, k, reach_m, &found);
     for (registration::Neighbor& n : found) {
       n.point = T_map_scan_[s] * n.point;  // a rigid motion keeps the distance
       neighbors->push_back(n);
     }
+    if (neighbors->size() >= wanted) {
+      std::nth_element(neighbors->begin(), neighbors->begin() + (k - 1), neighbors->end(), nearer);
+      neighbors->resize(wanted);
+      reach_m = std::sqrt((*neighbors)[wanted - 1].squared_distance);
+    }
   }
-  const auto nearer = [](const registration::Neighbor& a, const registration::Neighbor& b) {
-    return a.squared_distance < b.squared_distance;
-  };
-  const std::size_t keep = std::min<std::size_t>(neighbors->size(), static_cast<std::size_t>(k));
-  std::partial_sort(neighbors->begin(), neighbors->begin() + keep, neighbors->end(), nearer);
-  neighbors->resize(keep);
+  std::sort(neighbors->begin(), neighbors->end(), nearer);
 }
 
 std::size_t MapAndWindowSearch::Size() const {
