@@ -44,26 +44,44 @@ std::vector<Neighbor> BruteForce(const PointCloud& map, const PointCloud& scans_
   return nearest(all);
 }
 
+// Six scans of random points in their own frames, placed by random poses.
+struct Window {
+  explicit Window(std::mt19937* rng) : trees(6), point_lists(6) {
+    for (std::size_t s = 0; s < trees.size(); ++s) {
+      const lie::SE3d T_map_scan(lie::SO3d::Exp(Eigen::Vector3d::Random() * 0.3),
+                                 Eigen::Vector3d::Random());
+      const PointCloud points = RandomPoints(rng, 2000, 6.f);
+      trees[s].Build(points);
+      for (const Eigen::Vector3f& p : points) point_lists[s].push_back(p.cast<double>());
+      scans.push_back({&trees[s], &point_lists[s], T_map_scan});
+      const Eigen::Isometry3f T = lie::ToIsometry(T_map_scan).cast<float>();
+      for (const Eigen::Vector3f& p : points) in_map.push_back(T * p);
+    }
+  }
+  std::vector<mapping::IkdTree> trees;
+  std::vector<std::vector<Eigen::Vector3d>> point_lists;
+  std::vector<MapAndWindowSearch::Scan> scans;
+  PointCloud in_map;  // every scan's points, map frame
+};
+
+void ExpectSameNeighbors(const std::vector<Neighbor>& found,
+                         const std::vector<Neighbor>& expected) {
+  ASSERT_EQ(found.size(), expected.size());
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    EXPECT_NEAR(found[i].squared_distance, expected[i].squared_distance, 1e-4f);
+    EXPECT_LT((found[i].point - expected[i].point).norm(), 1e-4f);
+  }
+}
+
 TEST(MapAndWindowSearch, FindsTheKNearestOfTheMapOrOfMapAndScansTogether) {
   std::mt19937 rng(7);
-  // A sparse map over part of the volume, so that some queries find k in it and others not.
+  // A map over part of the volume, so that some queries find k in it and others not.
   mapping::IkdTree map;
   const PointCloud map_points = RandomPoints(&rng, 3000, 3.f);
   map.Build(map_points);
-  std::vector<mapping::IkdTree> scan_trees(6);
-  std::vector<MapAndWindowSearch::Scan> scans;
-  PointCloud scans_in_map;
-  for (mapping::IkdTree& tree : scan_trees) {
-    const lie::SE3d T_map_scan(lie::SO3d::Exp(Eigen::Vector3d::Random() * 0.3),
-                               Eigen::Vector3d::Random());
-    const PointCloud points = RandomPoints(&rng, 2000, 6.f);
-    tree.Build(points);
-    scans.push_back({&tree, T_map_scan});
-    const Eigen::Isometry3f T = lie::ToIsometry(T_map_scan).cast<float>();
-    for (const Eigen::Vector3f& p : points) scans_in_map.push_back(T * p);
-  }
-  const MapAndWindowSearch search(map, scans);
-  EXPECT_EQ(search.Size(), map_points.size() + scans_in_map.size());
+  const Window window(&rng);
+  const MapAndWindowSearch search(map, window.scans);
+  EXPECT_EQ(search.Size(), map_points.size() + window.in_map.size());
 
   int from_map_only = 0;
   std::vector<Neighbor> found;
@@ -71,13 +89,7 @@ TEST(MapAndWindowSearch, FindsTheKNearestOfTheMapOrOfMapAndScansTogether) {
     for (const float max_distance : {0.3f, 1.f}) {
       const int k = 5;
       search.KNearest(query, k, max_distance, &found);
-      const std::vector<Neighbor> expected =
-          BruteForce(map_points, scans_in_map, query, k, max_distance);
-      ASSERT_EQ(found.size(), expected.size());
-      for (std::size_t i = 0; i < found.size(); ++i) {
-        EXPECT_NEAR(found[i].squared_distance, expected[i].squared_distance, 1e-4f);
-        EXPECT_LT((found[i].point - expected[i].point).norm(), 1e-4f);
-      }
+      ExpectSameNeighbors(found, BruteForce(map_points, window.in_map, query, k, max_distance));
       std::vector<Neighbor> in_map;
       map.KNearest(query, k, max_distance, &in_map);
       from_map_only += static_cast<int>(in_map.size()) >= k;
@@ -86,6 +98,21 @@ TEST(MapAndWindowSearch, FindsTheKNearestOfTheMapOrOfMapAndScansTogether) {
   // Both branches ran: queries the map alone answered, and queries the scans filled in.
   EXPECT_GT(from_map_only, 20);
   EXPECT_LT(from_map_only, 900);
+}
+
+TEST(MapAndWindowSearch, WithAnEmptyMapFindsTheKNearestOfAllTheScans) {
+  std::mt19937 rng(8);
+  const mapping::IkdTree empty_map;
+  const Window window(&rng);
+  const MapAndWindowSearch search(empty_map, window.scans);
+  EXPECT_EQ(search.Size(), window.in_map.size());
+  std::vector<Neighbor> found;
+  for (const Eigen::Vector3f& query : RandomPoints(&rng, 500, 6.f)) {
+    for (const int k : {1, 5, 12}) {
+      search.KNearest(query, k, 1.f, &found);
+      ExpectSameNeighbors(found, BruteForce({}, window.in_map, query, k, 1.f));
+    }
+  }
 }
 
 }  // namespace

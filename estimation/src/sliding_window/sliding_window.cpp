@@ -297,7 +297,7 @@ void SlidingWindow::Correct(const DeskewedScan& scan, const registration::PlaneM
   std::vector<MapAndWindowSearch::Scan> earlier;
   for (std::size_t k = 0; scans_extend_map_ && k + 1 < window_.size(); ++k) {
     if (window_[k]->own_points == nullptr) continue;
-    earlier.push_back({window_[k]->own_points.get(), ObservationPose(k)});
+    earlier.push_back({window_[k]->own_points.get(), &window_[k]->points_imu, ObservationPose(k)});
   }
   const MapAndWindowSearch map_and_window(planes.map(), std::move(earlier));
   const registration::PlaneMatcher map_and_window_planes(map_and_window, planes.options());

@@ -15,10 +15,28 @@ MapAndWindowSearch::MapAndWindowSearch(const registration::NeighborSearch& map,
     T_map_scan_.push_back(T_map_scan);
     T_scan_map_.push_back(T_map_scan.inverse());
   }
+  // With an empty map every query searches every scan: their union, placed once, answers it
+  // with one search.
+  const auto listed = [](const Scan& s) { return s.point_list != nullptr; };
+  if (map_.Size() != 0 || scans_.size() < 2 || !std::all_of(scans_.begin(), scans_.end(), listed)) {
+    return;
+  }
+  PointCloud placed;
+  for (const Scan& s : scans_) {
+    for (const Eigen::Vector3d& p : *s.point_list) {
+      placed.push_back((s.T_map_scan * p).cast<float>());
+    }
+  }
+  scans_in_map_ = std::make_unique<mapping::IkdTree>();
+  scans_in_map_->Build(placed);
 }
 
 void MapAndWindowSearch::KNearest(const Eigen::Vector3f& query_map, int k, float max_distance,
                                   std::vector<registration::Neighbor>* neighbors) const {
+  if (scans_in_map_ != nullptr) {
+    scans_in_map_->KNearest(query_map, k, max_distance, neighbors);
+    return;
+  }
   map_.KNearest(query_map, k, max_distance, neighbors);
   // The map first: where it has the neighbours, the window's scans (whose points are denser
   // and all from the last second) would crowd them out and turn the update into scan-to-scan
