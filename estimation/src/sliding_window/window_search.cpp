@@ -22,6 +22,7 @@ MapAndWindowSearch::MapAndWindowSearch(const registration::NeighborSearch& map,
     return;
   }
   PointCloud placed;
+  placed.reserve(Size());
   for (const Scan& s : scans_) {
     for (const Eigen::Vector3d& p : *s.point_list) {
       placed.push_back((s.T_map_scan * p).cast<float>());
@@ -50,7 +51,7 @@ void MapAndWindowSearch::KNearest(const Eigen::Vector3f& query_map, int k, float
   // Newest scan first, and each search no farther than the k-th nearest found so far: a
   // farther point cannot be among the k nearest, and a tree prunes most of its nodes with a
   // tight bound. The result is the k nearest of all the scans, as one search of their union
-  // would find them; the first scans of a run, with an empty map, search them all.
+  // would find them.
   float reach_m = max_distance;
   std::vector<registration::Neighbor> found;
   for (std::size_t s = scans_.size(); s-- > 0;) {
