@@ -112,6 +112,8 @@ TEST(RunConfig, InvalidValueNamesFieldValueAndConstraint) {
                     {"prior_map", "tile_cache_million_points", "> 0"});
   ExpectConfigError("sliding_window:\n  time_offset_prior_sigma_s: 0\n",
                     {"sliding_window.time_offset_prior_sigma_s", "> 0"});
+  ExpectConfigError("sliding_window:\n  rematch_threshold: -0.01\n",
+                    {"sliding_window.rematch_threshold", "-0.01", ">= 0"});
 }
 
 TEST(RunConfig, OnlineCalibrationNeedsTheImuAndNoScanPairs) {
