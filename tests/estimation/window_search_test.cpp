@@ -48,8 +48,10 @@ std::vector<Neighbor> BruteForce(const PointCloud& map, const PointCloud& scans_
 struct Window {
   explicit Window(std::mt19937* rng) : trees(6), point_lists(6) {
     for (std::size_t s = 0; s < trees.size(); ++s) {
-      const lie::SE3d T_map_scan(lie::SO3d::Exp(Eigen::Vector3d::Random() * 0.3),
-                                 Eigen::Vector3d::Random());
+      std::uniform_real_distribution<double> u(-1.0, 1.0);
+      const Eigen::Vector3d phi(u(*rng), u(*rng), u(*rng));
+      const Eigen::Vector3d t_m(u(*rng), u(*rng), u(*rng));
+      const lie::SE3d T_map_scan(lie::SO3d::Exp(0.3 * phi), t_m);
       const PointCloud points = RandomPoints(rng, 2000, 6.f);
       trees[s].Build(points);
       for (const Eigen::Vector3f& p : points) point_lists[s].push_back(p.cast<double>());
